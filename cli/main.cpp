@@ -1,0 +1,510 @@
+// fcsolve: command-line front end.
+//   fcsolve info FILE [--json]
+//   fcsolve solve FILE --solver NAME [--tol 1e-8] [--max-iter N] [--max-time S]
+//                 [--out SOLUTION.hdf5] [--json] [--history] [--warm-start none|guess|solution]
+//                 [--SETTING VALUE ...]
+//   fcsolve error FILE SOLUTION.hdf5 [--json]
+//   fcsolve solvers [--json]
+//   fcsolve run FILE... [--solvers a,b,...] [--tol 1e-8] [--max-time S]
+// Exit codes: 0 solved (or command done), 1 tolerance not reached, 2 bad input
+// or usage (message on stderr), 3 internal error.
+#include "json_writer.hpp"
+
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/io/fclib.hpp>
+#include <fcsolve/problem/summary.hpp>
+#include <fcsolve/solvers/catalog.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace fcsolve;
+using fcsolve_cli::JsonWriter;
+
+constexpr int kExitSolved = 0, kExitNotSolved = 1, kExitBadInput = 2, kExitInternal = 3;
+
+const char* kUsage =
+    "usage: fcsolve <command> [options]\n"
+    "  info FILE [--json]                       problem summary (key=value or JSON)\n"
+    "  solve FILE --solver NAME [options]       solve an FCLIB problem\n"
+    "      --tol X (1e-8)  --max-iter N  --max-time SECONDS  --out FILE.hdf5  --json\n"
+    "      --history  --warm-start none|guess|solution  --SETTING VALUE (see `fcsolve solvers`)\n"
+    "  error FILE SOLUTION.hdf5 [--json]        FCLIB error of a stored /solution (r [, v])\n"
+    "  solvers [--json]                         list solvers and their settings\n"
+    "  run FILE... [--solvers a,b] [--tol X] [--max-time S]\n"
+    "                                           solve many files, print a table\n"
+    "  version                                  print the version\n"
+    "exit codes: 0 solved, 1 tolerance not reached, 2 bad input or usage\n";
+
+/// Command-line arguments: positionals and --key [value] options.
+struct Args {
+  std::vector<std::string> positional;
+  std::vector<std::pair<std::string, std::optional<std::string>>> options;
+
+  static Args parse(int argc, char** argv, int first) {
+    Args a;
+    for (int k = first; k < argc; ++k) {
+      std::string s = argv[k];
+      if (s.rfind("--", 0) == 0 && s.size() > 2) {
+        std::string key = s.substr(2);
+        std::optional<std::string> value;
+        const auto eq = key.find('=');
+        if (eq != std::string::npos) {
+          value = key.substr(eq + 1);
+          key = key.substr(0, eq);
+        } else if (k + 1 < argc && !is_option(argv[k + 1])) {
+          value = argv[++k];
+        }
+        a.options.emplace_back(key, value);
+      } else {
+        a.positional.push_back(s);
+      }
+    }
+    return a;
+  }
+  static bool is_option(const char* s) {
+    // "--x" is an option; "-1e-3" (a negative number) is a value
+    return std::strncmp(s, "--", 2) == 0 && std::strlen(s) > 2;
+  }
+  bool flag(const std::string& key) {
+    for (auto it = options.begin(); it != options.end(); ++it)
+      if (it->first == key) {
+        if (it->second && *it->second != "true" && *it->second != "1") {
+          // a flag followed by a positional: give the word back
+          positional.push_back(*it->second);
+        }
+        options.erase(it);
+        return true;
+      }
+    return false;
+  }
+  std::optional<std::string> take(const std::string& key) {
+    for (auto it = options.begin(); it != options.end(); ++it)
+      if (it->first == key) {
+        if (!it->second) throw UsageError("option --" + key + " needs a value");
+        std::string v = *it->second;
+        options.erase(it);
+        return v;
+      }
+    return std::nullopt;
+  }
+  void expect_no_more_options() const {
+    if (!options.empty()) throw UsageError("unknown option --" + options.front().first);
+  }
+};
+
+double parse_double(const std::string& key, const std::string& text) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0') throw UsageError("--" + key + ": '" + text + "' is not a number");
+  return x;
+}
+long long parse_int(const std::string& key, const std::string& text) {
+  char* end = nullptr;
+  const long long x = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0') throw UsageError("--" + key + ": '" + text + "' is not an integer");
+  return x;
+}
+
+std::string fmt(double x, const char* spec = "%.3e") {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, spec, x);
+  return buf;
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') { out += "\\n"; continue; }
+    if (c < 0x20 || c >= 0x7f) { out += '?'; continue; }
+    out += static_cast<char>(c);
+  }
+  return out + "\"";
+}
+
+// ---------------------------------------------------------------- info
+
+int cmd_info(Args args) {
+  const bool json = args.flag("json");
+  args.expect_no_more_options();
+  if (args.positional.size() != 1) throw UsageError("info takes exactly one FILE");
+  const std::string path = args.positional[0];
+  const fclib::Problem problem = fclib::read_problem(path);
+  const ProblemSummary s = std::visit([](const auto& p) { return summarize(p); }, problem);
+  const std::string title = std::visit([](const auto& p) { return p.text.title; }, problem);
+  const bool global = s.kind == "global";
+  if (json) {
+    JsonWriter w;
+    w.begin_object().field("file", path).field("kind", s.kind).field("d", s.d).field("nc", (long long)s.nc);
+    if (global) w.field("n", (long long)s.n);
+    w.field("m", (long long)s.m);
+    if (global) {
+      w.field("nnz_M", (long long)s.nnz_M).field("nnz_H", (long long)s.nnz_H);
+      w.field("nonzeros_M", (long long)s.nonzeros_M).field("nonzeros_H", (long long)s.nonzeros_H);
+      if (s.p > 0) w.field("p", (long long)s.p).field("nnz_G", (long long)s.nnz_G);
+    } else {
+      w.field("nnz_W", (long long)s.nnz_W).field("nonzeros_W", (long long)s.nonzeros_W);
+    }
+    w.field("mu_min", s.mu_min).field("mu_max", s.mu_max);
+    w.field(global ? "asymmetry_M" : "asymmetry_W", s.asymmetry).field("title", title);
+    w.end_object();
+    std::cout << w.str() << "\n";
+    return kExitSolved;
+  }
+  std::ostringstream o;
+  o << "file=" << path << " kind=" << s.kind << " d=" << s.d << " nc=" << s.nc;
+  if (global) o << " n=" << s.n;
+  o << " m=" << s.m;
+  if (global) {
+    o << " nnz_M=" << s.nnz_M << " nnz_H=" << s.nnz_H << " nonzeros_M=" << s.nonzeros_M
+      << " nonzeros_H=" << s.nonzeros_H;
+    if (s.p > 0) o << " p=" << s.p << " nnz_G=" << s.nnz_G;
+  } else {
+    o << " nnz_W=" << s.nnz_W << " nonzeros_W=" << s.nonzeros_W;
+  }
+  o << " mu_min=" << fmt(s.mu_min, "%.6g") << " mu_max=" << fmt(s.mu_max, "%.6g") << " "
+    << (global ? "asymmetry_M=" : "asymmetry_W=") << fmt(s.asymmetry, "%.3e")
+    << " title=" << quoted(title);
+  std::cout << o.str() << "\n";
+  return kExitSolved;
+}
+
+// ---------------------------------------------------------------- solve
+
+struct SolveOptions {
+  std::string solver;
+  registry::SolveRequest request;
+  std::string out, warm_start = "none";
+  bool json = false;
+};
+
+/// Common options (--tol, --max-iter, ...) and the solver's own settings.
+SolveOptions parse_solve_options(Args& args, const std::string& default_solver) {
+  SolveOptions o;
+  o.json = args.flag("json");
+  const bool history = args.flag("history");
+  o.solver = args.take("solver").value_or(default_solver);
+  const registry::SolverEntry& entry = registry::find(o.solver);
+  o.request = registry::make_request(entry);
+  if (auto v = args.take("tol")) {
+    o.request.common.tol = parse_double("tol", *v);
+    if (!(o.request.common.tol > 0)) throw UsageError("--tol must be positive");
+  }
+  if (auto v = args.take("max-iter")) {
+    const long long n = parse_int("max-iter", *v);
+    if (n < 1 || n > 1000000000) throw UsageError("--max-iter must be in [1, 1e9]");
+    o.request.common.max_iter = int(n);
+  }
+  if (auto v = args.take("max-time")) {
+    o.request.common.max_time = parse_double("max-time", *v);
+    if (!(o.request.common.max_time > 0)) throw UsageError("--max-time must be positive");
+  }
+  if (auto v = args.take("out")) o.out = *v;
+  if (auto v = args.take("warm-start")) o.warm_start = *v;
+  if (o.warm_start != "none" && o.warm_start != "guess" && o.warm_start != "solution")
+    throw UsageError("--warm-start must be none, guess or solution");
+  o.request.common.record_history = history;
+  // Everything left must be a setting of this solver (--omega 0.8, --shuffle).
+  for (auto& [key, value] : args.options) {
+    std::string name = key;
+    for (auto& c : name)
+      if (c == '-') c = '_';
+    if (!o.request.settings.declares(name))
+      throw UsageError("unknown option --" + key + " (not a common option nor a setting of '" +
+                       o.solver + "'; see `fcsolve solvers`)");
+    const registry::SettingSpec* spec = nullptr;
+    for (const auto& s : entry.settings)
+      if (s.name == name) spec = &s;
+    if (!value) {
+      if (spec->type != registry::SettingType::Boolean)
+        throw UsageError("option --" + key + " needs a value");
+      o.request.settings.set(name, true);
+    } else {
+      o.request.settings.set_text(name, *value);
+    }
+  }
+  args.options.clear();
+  return o;
+}
+
+void print_outcome(const std::string& path, const std::string& kind,
+                   const registry::SolveOutcome& out, const SolveOptions& o) {
+  if (o.json) {
+    JsonWriter w;
+    w.begin_object().field("file", path).field("kind", kind).field("solver", out.solver);
+    w.field("status", to_string(out.info.status)).field("converged", out.info.converged());
+    w.field("iterations", out.info.iterations).field("error", out.info.error);
+    w.field("tol", o.request.common.tol).field("seconds", out.seconds);
+    w.field("setup_seconds", out.info.setup_seconds).field("solve_seconds", out.info.solve_seconds);
+    w.field("message", out.info.message);
+    if (o.request.common.record_history) {
+      w.key("history");
+      w.values(out.info.history);
+    }
+    if (!o.out.empty()) w.field("out", o.out);
+    w.end_object();
+    std::cout << w.str() << "\n";
+    return;
+  }
+  std::cout << "file=" << path << " solver=" << out.solver
+            << " status=" << to_string(out.info.status) << " iterations=" << out.info.iterations
+            << " error=" << fmt(out.info.error) << " tol=" << fmt(o.request.common.tol, "%.1e")
+            << " seconds=" << fmt(out.seconds, "%.4g");
+  if (!out.info.message.empty()) std::cout << " message=" << quoted(out.info.message);
+  std::cout << "\n";
+  if (o.request.common.record_history) {
+    std::cout << "history:";
+    for (double e : out.info.history) std::cout << " " << fmt(e, "%.3e");
+    std::cout << "\n";
+  }
+}
+
+/// The warm start asked for (--warm-start guess|solution), checked by size.
+std::optional<fclib::Solution> warm_start(const std::string& path, const std::string& which) {
+  if (which == "none") return std::nullopt;
+  if (which == "solution") {
+    auto s = fclib::read_solution(path);
+    if (!s) throw IoError(path, "solution", "--warm-start solution: the file has no /solution");
+    return s;
+  }
+  auto g = fclib::read_guesses(path);
+  if (g.empty()) throw IoError(path, "guesses", "--warm-start guess: the file has no /guesses");
+  return g.front();
+}
+
+registry::SolveOutcome solve_file(const std::string& path, const fclib::Problem& problem,
+                                  SolveOptions& o) {
+  if (auto ws = warm_start(path, o.warm_start)) {
+    o.request.r0 = ws->r;
+    o.request.v0 = ws->v;
+  }
+  return std::visit(
+      [&](const auto& p) {
+        using T = std::decay_t<decltype(p)>;
+        const auto& entry = registry::find(o.solver);
+        if constexpr (std::is_same_v<T, LocalProblem>) return registry::solve(LocalProblemView(p), entry, o.request);
+        else return registry::solve(GlobalProblemView(p), entry, o.request);
+      },
+      problem);
+}
+
+int cmd_solve(Args args) {
+  SolveOptions o = parse_solve_options(args, "");
+  if (args.positional.size() != 1) throw UsageError("solve takes exactly one FILE");
+  const std::string path = args.positional[0];
+  const fclib::Problem problem = fclib::read_problem(path);
+  const std::string kind = std::holds_alternative<LocalProblem>(problem) ? "local" : "global";
+  const registry::SolveOutcome out = solve_file(path, problem, o);
+  if (!o.out.empty()) {
+    fclib::write_problem(o.out, problem);
+    fclib::write_solution(o.out, fclib::Solution{out.r, out.u, out.v, out.lambda});
+  }
+  print_outcome(path, kind, out, o);
+  return out.info.converged() ? kExitSolved : kExitNotSolved;
+}
+
+// ---------------------------------------------------------------- error
+
+/// The FCLIB error of a stored solution (r [, v]), as fcref.py measures it.
+int cmd_error(Args args) {
+  const bool json = args.flag("json");
+  args.expect_no_more_options();
+  if (args.positional.size() != 2) throw UsageError("error takes PROBLEM.hdf5 SOLUTION.hdf5");
+  const std::string path = args.positional[0], sol_path = args.positional[1];
+  const fclib::Problem problem = fclib::read_problem(path);
+  auto sol = fclib::read_solution(sol_path);
+  if (!sol) throw IoError(sol_path, "solution", "missing /solution group");
+  JsonWriter w;
+  w.begin_object().field("file", path).field("solution", sol_path);
+  std::ostringstream o;
+  if (const auto* lp = std::get_if<LocalProblem>(&problem)) {
+    if (sol->r.size() != lp->size())
+      throw IoError(sol_path, "solution/r", "expected " + std::to_string(lp->size()) + " entries");
+    const LocalErrorReport e = local_error_report(*lp, sol->r);
+    w.field("error", e.error).field("siconos_error", e.siconos_error).field("absolute", e.absolute);
+    w.field("max_contact", e.max_contact).field("worst_contact", (long long)e.worst_contact);
+    o << "error=" << fmt(e.error, "%.17g") << " siconos_error=" << fmt(e.siconos_error, "%.17g")
+      << " absolute=" << fmt(e.absolute, "%.17g") << " max_contact=" << fmt(e.max_contact, "%.17g");
+  } else {
+    const auto& gp = std::get<GlobalProblem>(problem);
+    if (sol->r.size() != gp.size())
+      throw IoError(sol_path, "solution/r", "expected " + std::to_string(gp.size()) + " entries");
+    GlobalReduction<DefaultBackend> reduction(gp, /*form_W=*/false);
+    const Vector v = sol->v.size() ? sol->v : reduction.velocity(sol->r);
+    if (v.size() != gp.num_dofs())
+      throw IoError(sol_path, "solution/v", "expected " + std::to_string(gp.num_dofs()) + " entries");
+    const Vector lambda = gp.has_bilateral() ? (sol->l.size() ? sol->l : reduction.multipliers(sol->r)) : Vector();
+    const GlobalErrorReport e = global_error_report(gp, reduction.free_velocity_norm(), sol->r, v, lambda);
+    w.field("error", e.error).field("complementarity", e.complementarity);
+    w.field("equilibrium", e.equilibrium).field("max_contact", e.max_contact);
+    o << "error=" << fmt(e.error, "%.17g") << " complementarity=" << fmt(e.complementarity, "%.17g")
+      << " equilibrium=" << fmt(e.equilibrium, "%.17g") << " max_contact=" << fmt(e.max_contact, "%.17g");
+  }
+  w.end_object();
+  std::cout << (json ? w.str() : o.str()) << "\n";
+  return kExitSolved;
+}
+
+// ---------------------------------------------------------------- solvers
+
+int cmd_solvers(Args args) {
+  const bool json = args.flag("json");
+  args.expect_no_more_options();
+  if (json) {
+    JsonWriter w;
+    w.begin_array();
+    for (const auto& e : registry::entries()) {
+      w.begin_object().field("name", e.name).field("family", e.family).field("summary", e.summary);
+      w.field("needs_symmetric", e.needs_symmetric).field("default_max_iter", e.default_max_iter);
+      w.field("local", bool(e.solve_local)).field("global_native", bool(e.solve_global));
+      w.key("settings").begin_array();
+      for (const auto& s : e.settings) {
+        w.begin_object().field("name", s.name).field("type", registry::to_string(s.type));
+        w.field("default", registry::format_value(s.default_value)).field("doc", s.doc);
+        if (!s.choices.empty()) {
+          w.key("choices").begin_array();
+          for (const auto& c : s.choices) w.value(c);
+          w.end_array();
+        }
+        w.end_object();
+      }
+      w.end_array().end_object();
+    }
+    w.end_array();
+    std::cout << w.str() << "\n";
+    return kExitSolved;
+  }
+  for (const auto& e : registry::entries()) {
+    std::cout << e.name << "  [" << e.family << "]  " << e.summary
+              << (e.needs_symmetric ? "  (symmetric W)" : "") << "\n";
+    for (const auto& s : e.settings) {
+      std::cout << "    --" << s.name << " " << registry::to_string(s.type) << " = "
+                << registry::format_value(s.default_value);
+      if (!s.choices.empty()) {
+        std::cout << " {";
+        for (std::size_t k = 0; k < s.choices.size(); ++k) std::cout << (k ? "," : "") << s.choices[k];
+        std::cout << "}";
+      }
+      std::cout << "  " << s.doc << "\n";
+    }
+  }
+  if (registry::entries().empty()) std::cout << "(no solver registered)\n";
+  return kExitSolved;
+}
+
+// ---------------------------------------------------------------- run (main job)
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s) {
+    if (c == sep) { if (!cur.empty()) out.push_back(cur); cur.clear(); }
+    else cur += c;
+  }
+  if (!cur.empty()) out.push_back(cur);
+  return out;
+}
+
+std::string basename(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  std::string b = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = b.rfind(".hdf5");
+  return dot == std::string::npos ? b : b.substr(0, dot);
+}
+
+/// The main job: every file with every listed solver, as a table.
+int cmd_run(Args args) {
+  std::vector<std::string> solvers;
+  if (auto v = args.take("solvers")) solvers = split(*v, ',');
+  else
+    for (const auto& e : registry::entries())
+      if (e.family == "nsgs") solvers.push_back(e.name);
+  if (solvers.empty()) throw UsageError("no solver to run (give --solvers a,b,...)");
+  double tol = 1e-8, max_time = 20;
+  if (auto v = args.take("tol")) tol = parse_double("tol", *v);
+  if (auto v = args.take("max-time")) max_time = parse_double("max-time", *v);
+  args.expect_no_more_options();
+  if (args.positional.empty()) throw UsageError("run needs at least one FILE");
+  for (const auto& s : solvers) registry::find(s);  // fail early on a typo
+
+  std::printf("%-40s %-6s %5s %-14s %-15s %7s %10s %9s\n", "problem", "kind", "nc", "solver",
+              "status", "iter", "error", "seconds");
+  int solved = 0, runs = 0;
+  for (const auto& path : args.positional) {
+    fclib::Problem problem;
+    try {
+      problem = fclib::read_problem(path);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "fcsolve: skipping %s\n", e.what());
+      continue;
+    }
+    const bool local = std::holds_alternative<LocalProblem>(problem);
+    const Index nc = std::visit([](const auto& p) { return p.num_contacts(); }, problem);
+    for (const auto& name : solvers) {
+      SolveOptions o;
+      o.solver = name;
+      o.request = registry::make_request(registry::find(name));
+      o.request.common.tol = tol;
+      o.request.common.max_time = max_time;
+      const registry::SolveOutcome out = solve_file(path, problem, o);
+      ++runs;
+      solved += out.info.converged();
+      std::printf("%-40s %-6s %5ld %-14s %-15s %7d %10.3e %9.4f\n", basename(path).c_str(),
+                  local ? "local" : "global", long(nc), name.c_str(), to_string(out.info.status),
+                  out.info.iterations, out.info.error, out.seconds);
+    }
+  }
+  std::printf("%d of %d runs reached tol %.1e\n", solved, runs, tol);
+  return kExitSolved;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return kExitBadInput;
+  }
+  const std::string command = argv[1];
+  try {
+    Args args = Args::parse(argc, argv, 2);
+    if (command == "info") return cmd_info(args);
+    if (command == "solve") return cmd_solve(args);
+    if (command == "solvers") return cmd_solvers(args);
+    if (command == "run") return cmd_run(args);
+    if (command == "error") return cmd_error(args);
+    if (command == "version" || command == "--version") {
+      std::cout << "fcsolve " << FCSOLVE_VERSION_STRING << "\n";
+      return kExitSolved;
+    }
+    if (command == "help" || command == "--help" || command == "-h") {
+      std::cout << kUsage;
+      return kExitSolved;
+    }
+    throw UsageError("unknown command '" + command + "'");
+  } catch (const IoError& e) {
+    std::cerr << "fcsolve: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const InvalidProblem& e) {
+    std::cerr << "fcsolve: invalid problem: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const UsageError& e) {
+    std::cerr << "fcsolve: " << e.what() << "\n" << kUsage;
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "fcsolve: out of memory\n";
+    return kExitInternal;
+  } catch (const std::exception& e) {
+    std::cerr << "fcsolve: internal error: " << e.what() << "\n";
+    return kExitInternal;
+  }
+}

@@ -1,0 +1,507 @@
+// FCLIB HDF5 input/output (the format of FrictionalContactLibrary/fclib,
+// src/fclib.h), on the HDF5 C++ API. Needs the fcsolve::fclib target.
+//
+//   /fclib_local  {spacedim, W, vectors/{q, mu}, info/{title, description, math_info}}
+//   /fclib_global {spacedim, M, H, [G], vectors/{f, w, mu, [b]}, info}
+//   /solution     {r, u, [v], [l]}
+//   /guesses      {number_of_guesses, 1/{r, u, [v], [l]}, 2/..., ...}
+//
+// A matrix is a group of 1-element int datasets m, n, nz, nzmax and arrays
+// p, i (int) and x (double): nz >= 0 triplets, nz = -1 compressed columns,
+// nz = -2 compressed rows. Real files contradict fclib.h on triplets: it
+// documents p = rows, i = columns, but every Siconos- and LMGC90-written file
+// uses CSparse's i = row, p = column (and for the square, unsymmetric LMGC M
+// only that reading is right). We read i = row, p = column and fall back on
+// the documented reading only when the indices do not fit m x n; we write
+// compressed columns, which are unambiguous.
+//
+// Every malformed input throws IoError naming the file and the dataset.
+#pragma once
+
+#include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/problem/global_problem.hpp>
+#include <fcsolve/problem/local_problem.hpp>
+#include <fcsolve/problem/validate.hpp>
+
+#include <H5Cpp.h>
+
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace fcsolve {
+namespace fclib {
+
+enum class Kind { Local, Global };
+using Problem = std::variant<LocalProblem, GlobalProblem>;
+
+/// A solution or a guess: any vector may be empty (absent from the file).
+struct Solution {
+  Vector r, u, v, l;
+};
+
+namespace detail {
+
+using fcsolve::detail::check_finite;  // NOLINT
+
+/// Reads one file; remembers which dataset is being read, so every error
+/// (ours or HDF5's) names it.
+class Reader {
+ public:
+  explicit Reader(const std::string& path) : path_(path) {
+    H5::Exception::dontPrint();
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) fail("", "cannot open file (missing or unreadable)");
+    probe.close();
+    htri_t is_hdf5 = -1;
+    {
+      // H5Fis_hdf5 pushes an error on unreadable files; silence it.
+      H5E_auto2_t func;
+      void* data;
+      H5Eget_auto2(H5E_DEFAULT, &func, &data);
+      H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+      is_hdf5 = H5Fis_hdf5(path.c_str());
+      H5Eset_auto2(H5E_DEFAULT, func, data);
+    }
+    if (is_hdf5 <= 0) fail("", "not an HDF5 file (or truncated)");
+    try {
+      file_.openFile(path, H5F_ACC_RDONLY);
+    } catch (const H5::Exception& e) {
+      fail("", "HDF5 cannot open it: " + e.getDetailMsg());
+    }
+  }
+
+  [[noreturn]] void fail(const std::string& dataset, const std::string& message) const {
+    throw IoError(path_, dataset, message);
+  }
+
+  bool exists(const std::string& name) const {
+    // H5Lexists needs each parent to exist: test the path level by level.
+    std::size_t pos = 0;
+    while (true) {
+      pos = name.find('/', pos + 1);
+      const std::string part = name.substr(0, pos);
+      const htri_t e = H5Lexists(file_.getId(), part.c_str(), H5P_DEFAULT);
+      if (e <= 0) return false;
+      if (pos == std::string::npos) return true;
+    }
+  }
+
+  template <class F>
+  auto guarded(const std::string& name, F&& f) const {
+    try {
+      return f();
+    } catch (const IoError&) {
+      throw;
+    } catch (const H5::Exception& e) {
+      fail(name, "HDF5 error: " + e.getDetailMsg());
+    }
+  }
+
+  H5::DataSet open(const std::string& name) const {
+    if (!exists(name)) fail(name, "missing dataset");
+    return guarded(name, [&] {
+      if (file_.childObjType(name) != H5O_TYPE_DATASET) fail(name, "is not a dataset");
+      return file_.openDataSet(name);
+    });
+  }
+
+  hssize_t count(const std::string& name, const H5::DataSet& ds) const {
+    return guarded(name, [&] {
+      const H5::DataSpace space = ds.getSpace();
+      if (space.getSimpleExtentNdims() > 1) fail(name, "expected a scalar or 1-D dataset");
+      return space.getSimpleExtentNpoints();
+    });
+  }
+
+  int read_int(const std::string& name) const {
+    const H5::DataSet ds = open(name);
+    if (ds.getTypeClass() != H5T_INTEGER) fail(name, "expected an integer dataset");
+    if (count(name, ds) != 1) fail(name, "expected exactly one integer");
+    int value = 0;
+    guarded(name, [&] { ds.read(&value, H5::PredType::NATIVE_INT); return 0; });
+    return value;
+  }
+
+  /// An integer array of at least `min_count` entries (-1: any).
+  std::vector<int> read_ints(const std::string& name, hssize_t min_count) const {
+    const H5::DataSet ds = open(name);
+    if (ds.getTypeClass() != H5T_INTEGER) fail(name, "expected an integer dataset");
+    const hssize_t n = count(name, ds);
+    if (min_count >= 0 && n < min_count)
+      fail(name, "expected at least " + std::to_string(min_count) + " entries, found " +
+                     std::to_string(n));
+    std::vector<int> out(static_cast<std::size_t>(n));
+    if (n > 0) guarded(name, [&] { ds.read(out.data(), H5::PredType::NATIVE_INT); return 0; });
+    return out;
+  }
+
+  /// A real array: exactly `expected` entries when expected >= 0, finite.
+  Vector read_doubles(const std::string& name, hssize_t expected, bool at_least = false) const {
+    const H5::DataSet ds = open(name);
+    const H5T_class_t cls = ds.getTypeClass();
+    if (cls != H5T_FLOAT && cls != H5T_INTEGER) fail(name, "expected a numeric dataset");
+    const hssize_t n = count(name, ds);
+    if (expected >= 0 && (at_least ? n < expected : n != expected))
+      fail(name, "expected " + std::string(at_least ? "at least " : "") + std::to_string(expected) +
+                     " entries, found " + std::to_string(n));
+    Vector out(static_cast<Index>(n));
+    if (n > 0) guarded(name, [&] { ds.read(out.data(), H5::PredType::NATIVE_DOUBLE); return 0; });
+    for (Index k = 0; k < out.size(); ++k)
+      if (!std::isfinite(out[k]))
+        fail(name, "non-finite value (" + std::to_string(out[k]) + ") at index " +
+                       std::to_string(k));
+    return out;
+  }
+
+  std::string read_string(const std::string& name) const {
+    if (!exists(name)) return {};
+    const H5::DataSet ds = open(name);
+    if (ds.getTypeClass() != H5T_STRING) fail(name, "expected a string dataset");
+    return guarded(name, [&] {
+      std::string s;
+      ds.read(s, ds.getStrType());
+      while (!s.empty() && s.back() == '\0') s.pop_back();
+      return s;
+    });
+  }
+
+  SparseMatrix read_matrix(const std::string& g) const {
+    const int m = read_int(g + "/m"), n = read_int(g + "/n"), nz = read_int(g + "/nz");
+    if (m < 0 || n < 0) fail(g, "negative dimensions " + std::to_string(m) + " x " + std::to_string(n));
+    std::vector<Eigen::Triplet<double, int>> t;
+    if (nz >= 0) {
+      const std::vector<int> p = read_ints(g + "/p", nz), i = read_ints(g + "/i", nz);
+      const Vector x = read_doubles(g + "/x", nz, true);
+      // files: i = row, p = column; fclib.h: p = row, i = column (fallback)
+      const int* rows = i.data();
+      const int* cols = p.data();
+      if (!fits(rows, cols, nz, m, n)) std::swap(rows, cols);
+      if (!fits(rows, cols, nz, m, n))
+        fail(g, "triplet indices out of range for a " + std::to_string(m) + " x " +
+                    std::to_string(n) + " matrix");
+      t.reserve(static_cast<std::size_t>(nz));
+      for (int k = 0; k < nz; ++k) t.emplace_back(rows[k], cols[k], x[k]);
+    } else if (nz == -1 || nz == -2) {
+      const bool by_column = nz == -1;
+      const int outer = by_column ? n : m, inner = by_column ? m : n;
+      const std::vector<int> p = read_ints(g + "/p", outer + 1);
+      if (p[0] != 0) fail(g + "/p", "compressed pointers must start at 0");
+      for (int k = 0; k < outer; ++k)
+        if (p[k + 1] < p[k]) fail(g + "/p", "compressed pointers decrease at " + std::to_string(k));
+      const int nnz = p[outer];
+      const std::vector<int> i = read_ints(g + "/i", nnz);
+      const Vector x = read_doubles(g + "/x", nnz, true);
+      t.reserve(static_cast<std::size_t>(nnz));
+      for (int o = 0; o < outer; ++o)
+        for (int k = p[o]; k < p[o + 1]; ++k) {
+          if (i[k] < 0 || i[k] >= inner)
+            fail(g + "/i", "index " + std::to_string(i[k]) + " out of range [0, " +
+                               std::to_string(inner) + ")");
+          if (by_column) t.emplace_back(i[k], o, x[k]);
+          else t.emplace_back(o, i[k], x[k]);
+        }
+    } else {
+      fail(g + "/nz", "unknown storage nz = " + std::to_string(nz) +
+                          " (triplet >= 0, compressed column -1, compressed row -2)");
+    }
+    SparseMatrix A(m, n);
+    A.setFromTriplets(t.begin(), t.end());  // sums duplicates, sorts indices
+    A.makeCompressed();
+    return A;
+  }
+
+  int read_spacedim(const std::string& g) const {
+    const int d = read_int(g + "/spacedim");
+    if (d < 1 || d > 3) fail(g + "/spacedim", "must be 2 or 3 (1: frictionless), got " + std::to_string(d));
+    return d;
+  }
+
+  ProblemText read_text(const std::string& g) const {
+    return {read_string(g + "/info/title"), read_string(g + "/info/description"),
+            read_string(g + "/info/math_info")};
+  }
+
+  std::optional<Solution> read_solution_group(const std::string& g) const {
+    if (!exists(g)) return std::nullopt;
+    Solution s;
+    for (auto [name, target] : {std::pair<const char*, Vector*>{"r", &s.r}, {"u", &s.u},
+                                {"v", &s.v}, {"l", &s.l}})
+      if (exists(g + "/" + name)) *target = read_doubles(g + "/" + name, -1);
+    return s;
+  }
+
+  const std::string& path() const { return path_; }
+  const H5::H5File& file() const { return file_; }
+
+ private:
+  static bool fits(const int* rows, const int* cols, int nz, int m, int n) {
+    for (int k = 0; k < nz; ++k)
+      if (rows[k] < 0 || rows[k] >= m || cols[k] < 0 || cols[k] >= n) return false;
+    return true;
+  }
+
+  std::string path_;
+  H5::H5File file_;
+};
+
+/// Re-throws a validation failure as an IoError naming the dataset.
+template <class View>
+void validate_read(const Reader& in, const std::string& group, const View& view) {
+  try {
+    validate(view);
+  } catch (const InvalidProblem& e) {
+    const std::string& f = e.field();
+    const bool vector = f == "q" || f == "mu" || f == "f" || f == "w" || f == "b";
+    in.fail(group + "/" + (vector ? "vectors/" : "") + f, e.what());
+  }
+}
+
+class Writer {
+ public:
+  Writer(const std::string& path, unsigned flags) : path_(path) {
+    H5::Exception::dontPrint();
+    try {
+      file_ = H5::H5File(path, flags);
+    } catch (const H5::Exception& e) {
+      throw IoError(path, "", "cannot create or open for writing: " + e.getDetailMsg());
+    }
+  }
+  template <class F>
+  void guarded(const std::string& name, F&& f) {
+    try {
+      f();
+    } catch (const H5::Exception& e) {
+      throw IoError(path_, name, "HDF5 write error: " + e.getDetailMsg());
+    }
+  }
+  void group(const std::string& name) {
+    guarded(name, [&] { file_.createGroup(name); });
+  }
+  void remove_if_exists(const std::string& name) {
+    if (H5Lexists(file_.getId(), name.c_str(), H5P_DEFAULT) > 0)
+      guarded(name, [&] { file_.unlink(name); });
+  }
+  // FCLIB stores scalars as 1-element 1-D datasets (H5LTmake_dataset_int).
+  void ints(const std::string& name, const int* data, hsize_t n) {
+    guarded(name, [&] {
+      const hsize_t dims[1] = {n};
+      H5::DataSpace space(1, dims);
+      H5::DataSet ds = file_.createDataSet(name, H5::PredType::NATIVE_INT, space);
+      if (n > 0) ds.write(data, H5::PredType::NATIVE_INT);
+    });
+  }
+  void integer(const std::string& name, int value) { ints(name, &value, 1); }
+  void doubles(const std::string& name, const double* data, hsize_t n) {
+    guarded(name, [&] {
+      const hsize_t dims[1] = {n};
+      H5::DataSpace space(1, dims);
+      H5::DataSet ds = file_.createDataSet(name, H5::PredType::NATIVE_DOUBLE, space);
+      if (n > 0) ds.write(data, H5::PredType::NATIVE_DOUBLE);
+    });
+  }
+  template <class V>
+  void vector(const std::string& name, const V& v) {
+    const Vector tmp = v;
+    doubles(name, tmp.data(), static_cast<hsize_t>(tmp.size()));
+  }
+  void string(const std::string& name, const std::string& s) {
+    guarded(name, [&] {
+      H5::StrType type(H5::PredType::C_S1, std::max<std::size_t>(1, s.size()));
+      H5::DataSet ds = file_.createDataSet(name, type, H5::DataSpace(H5S_SCALAR));
+      std::string padded = s;
+      padded.resize(std::max<std::size_t>(1, s.size()), '\0');
+      ds.write(padded.data(), type);
+    });
+  }
+  /// Compressed column (nz = -1).
+  template <class Sparse>
+  void matrix(const std::string& g, const Sparse& A) {
+    SparseMatrix C(A);
+    C.makeCompressed();
+    group(g);
+    integer(g + "/m", int(C.rows()));
+    integer(g + "/n", int(C.cols()));
+    integer(g + "/nz", -1);
+    integer(g + "/nzmax", int(C.nonZeros()));
+    ints(g + "/p", C.outerIndexPtr(), hsize_t(C.cols() + 1));
+    ints(g + "/i", C.innerIndexPtr(), hsize_t(C.nonZeros()));
+    doubles(g + "/x", C.valuePtr(), hsize_t(C.nonZeros()));
+  }
+  void text(const std::string& g, const ProblemText& t) {
+    group(g + "/info");
+    string(g + "/info/title", t.title);
+    string(g + "/info/description", t.description);
+    string(g + "/info/math_info", t.math_info);
+  }
+  void solution(const std::string& g, const Solution& s) {
+    group(g);
+    for (auto [name, v] : {std::pair<const char*, const Vector*>{"r", &s.r}, {"u", &s.u},
+                           {"v", &s.v}, {"l", &s.l}})
+      if (v->size() > 0) vector(g + "/" + name, *v);
+  }
+
+ private:
+  std::string path_;
+  H5::H5File file_;
+};
+
+}  // namespace detail
+
+/// Which problem a file holds. Throws IoError if neither group is present.
+inline Kind detect_kind(const std::string& path) {
+  detail::Reader in(path);
+  if (in.exists("fclib_local")) return Kind::Local;
+  if (in.exists("fclib_global")) return Kind::Global;
+  in.fail("", "neither /fclib_local nor /fclib_global is present");
+}
+
+inline LocalProblem read_local(const std::string& path) {
+  detail::Reader in(path);
+  const std::string g = "fclib_local";
+  if (!in.exists(g)) in.fail(g, "missing group (not a local FCLIB problem)");
+  if (in.exists(g + "/V") || in.exists(g + "/R"))
+    in.fail(g + "/V", "mixed local problems (V, R, s) are not supported");
+  LocalProblem p;
+  p.d = in.read_spacedim(g);
+  p.W = in.read_matrix(g + "/W");
+  const Index m = p.W.rows();
+  p.q = in.read_doubles(g + "/vectors/q", m);
+  if (m % p.d != 0)
+    in.fail(g + "/W", "size " + std::to_string(m) + " is not a multiple of spacedim " +
+                          std::to_string(p.d));
+  p.mu = in.read_doubles(g + "/vectors/mu", m / p.d);
+  p.text = in.read_text(g);
+  detail::validate_read(in, g, LocalProblemView(p));
+  return p;
+}
+
+inline GlobalProblem read_global(const std::string& path) {
+  detail::Reader in(path);
+  const std::string g = "fclib_global";
+  if (!in.exists(g)) in.fail(g, "missing group (not a global FCLIB problem)");
+  GlobalProblem p;
+  p.d = in.read_spacedim(g);
+  p.M = in.read_matrix(g + "/M");
+  p.H = in.read_matrix(g + "/H");
+  const Index n = p.M.rows(), m = p.H.cols();
+  if (p.H.rows() != n)
+    in.fail(g + "/H", "has " + std::to_string(p.H.rows()) + " rows, M has " + std::to_string(n));
+  p.f = in.read_doubles(g + "/vectors/f", n);
+  p.w = in.read_doubles(g + "/vectors/w", m);
+  if (m % p.d != 0)
+    in.fail(g + "/H", "column count " + std::to_string(m) + " is not a multiple of spacedim " +
+                          std::to_string(p.d));
+  p.mu = in.read_doubles(g + "/vectors/mu", m / p.d);
+  if (in.exists(g + "/G")) {
+    p.G = in.read_matrix(g + "/G");
+    p.b = in.read_doubles(g + "/vectors/b", p.G.cols());
+  }
+  p.text = in.read_text(g);
+  detail::validate_read(in, g, GlobalProblemView(p));
+  return p;
+}
+
+inline Problem read_problem(const std::string& path) {
+  if (detect_kind(path) == Kind::Local) return read_local(path);
+  return read_global(path);
+}
+
+/// The /solution group, if any (vectors not checked against a problem).
+inline std::optional<Solution> read_solution(const std::string& path) {
+  detail::Reader in(path);
+  return in.read_solution_group("solution");
+}
+
+/// The /guesses groups, in order.
+inline std::vector<Solution> read_guesses(const std::string& path) {
+  detail::Reader in(path);
+  std::vector<Solution> out;
+  if (!in.exists("guesses")) return out;
+  const int count = in.read_int("guesses/number_of_guesses");
+  if (count < 0) in.fail("guesses/number_of_guesses", "negative count");
+  for (int k = 1; k <= count; ++k) {
+    const std::string g = "guesses/" + std::to_string(k);
+    auto s = in.read_solution_group(g);
+    if (!s) in.fail(g, "missing guess group");
+    out.push_back(std::move(*s));
+  }
+  return out;
+}
+
+/// Writes a new file (truncating) holding the local problem.
+inline void write_local(const std::string& path, const LocalProblemView& p,
+                        const ProblemText& text = {}) {
+  validate(p);
+  detail::Writer out(path, H5F_ACC_TRUNC);
+  const std::string g = "fclib_local";
+  out.group(g);
+  out.integer(g + "/spacedim", p.d);
+  out.matrix(g + "/W", p.W);
+  out.group(g + "/vectors");
+  out.vector(g + "/vectors/q", p.q);
+  out.vector(g + "/vectors/mu", p.mu);
+  out.text(g, text);
+}
+inline void write_local(const std::string& path, const LocalProblem& p) {
+  write_local(path, LocalProblemView(p), p.text);
+}
+
+inline void write_global(const std::string& path, const GlobalProblemView& p,
+                         const ProblemText& text = {}) {
+  validate(p);
+  detail::Writer out(path, H5F_ACC_TRUNC);
+  const std::string g = "fclib_global";
+  out.group(g);
+  out.integer(g + "/spacedim", p.d);
+  out.matrix(g + "/M", p.M);
+  out.matrix(g + "/H", p.H);
+  if (p.G) out.matrix(g + "/G", *p.G);
+  out.group(g + "/vectors");
+  out.vector(g + "/vectors/f", p.f);
+  out.vector(g + "/vectors/w", p.w);
+  out.vector(g + "/vectors/mu", p.mu);
+  if (p.b) out.vector(g + "/vectors/b", *p.b);
+  out.text(g, text);
+}
+inline void write_global(const std::string& path, const GlobalProblem& p) {
+  write_global(path, GlobalProblemView(p), p.text);
+}
+
+inline void write_problem(const std::string& path, const Problem& p) {
+  std::visit([&](const auto& pb) {
+    using T = std::decay_t<decltype(pb)>;
+    if constexpr (std::is_same_v<T, LocalProblem>) write_local(path, pb);
+    else write_global(path, pb);
+  }, p);
+}
+
+namespace detail {
+inline unsigned open_flags_for_update(const std::string& path) {
+  std::ifstream probe(path, std::ios::binary);
+  return probe ? H5F_ACC_RDWR : H5F_ACC_TRUNC;
+}
+}  // namespace detail
+
+/// Writes (or replaces) /solution in `path`; creates the file if needed.
+inline void write_solution(const std::string& path, const Solution& s) {
+  detail::Writer out(path, detail::open_flags_for_update(path));
+  out.remove_if_exists("solution");
+  out.solution("solution", s);
+}
+
+/// Writes (or replaces) /guesses in `path`; creates the file if needed.
+inline void write_guesses(const std::string& path, const std::vector<Solution>& guesses) {
+  detail::Writer out(path, detail::open_flags_for_update(path));
+  out.remove_if_exists("guesses");
+  out.group("guesses");
+  out.integer("guesses/number_of_guesses", int(guesses.size()));
+  for (std::size_t k = 0; k < guesses.size(); ++k)
+    out.solution("guesses/" + std::to_string(k + 1), guesses[k]);
+}
+
+}  // namespace fclib
+}  // namespace fcsolve

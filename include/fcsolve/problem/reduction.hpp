@@ -1,0 +1,146 @@
+// Global -> reduced: FC/I(M, H, f, w, mu) becomes FC/II(W, q, mu) with
+//   W = H^T M^-1 H,   q = H^T M^-1 f + w     (Acary, Bremond & Huber 2018, sec. 2)
+// and v is recovered from r by v = M^-1 (H r + f). With bilateral constraints
+// (G, b) M is replaced by the saddle-point matrix
+//   K = [ M  -G ]   acting on (v, lambda):  K (v, lambda) = (H r + f, -b),
+//       [ G^T 0 ]
+// and W, q, v take the v-block of K^-1.
+//
+// M is factorised once: Cholesky when it is symmetric up to rounding, LU when
+// it is not (the LMGC files: symmetrising M there changes W by 16 %), LU too
+// if Cholesky fails. `Backend` is a linear-algebra policy (EigenBackend,
+// SuiteSparseBackend).
+#pragma once
+
+#include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/timer.hpp>
+#include <fcsolve/linalg/eigen_backend.hpp>
+#include <fcsolve/problem/global_problem.hpp>
+#include <fcsolve/problem/symmetry.hpp>
+
+#include <memory>
+
+namespace fcsolve {
+
+template <class Backend = EigenBackend>
+class GlobalReduction {
+ public:
+  GlobalReduction() = default;
+  explicit GlobalReduction(const GlobalProblemView& p, bool form_W = true) { compute(p, form_W); }
+
+  /// Factorises M (or K) and forms q and (if form_W) W. Throws
+  /// InvalidProblem("M", ...) when M (or K) is singular.
+  GlobalReduction& compute(const GlobalProblemView& p, bool form_W = true) {
+    Stopwatch clock;
+    n_ = p.num_dofs();
+    rows_ = n_ + (p.has_bilateral() ? p.G->cols() : 0);
+    H_ = SparseMatrix(p.H);
+    asymmetry_ = relative_asymmetry(p.M);
+    symmetric_ = false;
+    sym_.reset();
+    gen_.reset();
+    if (p.has_bilateral()) {
+      factorise_general(saddle_point_matrix(p), "M, G (saddle-point matrix)");
+    } else {
+      if (asymmetry_ <= kSymmetryRoundoff) {
+        sym_ = std::make_unique<typename Backend::SymmetricSolver>();
+        sym_->compute(SparseMatrix(p.M));
+        symmetric_ = sym_->info() == Eigen::Success;
+        if (!symmetric_) sym_.reset();
+      }
+      if (!symmetric_) factorise_general(SparseMatrix(p.M), "M");
+    }
+
+    // q = H^T (M^-1 f)_v + w, W = H^T (M^-1 H)_v
+    rhs_.setZero(rows_);
+    rhs_.head(n_) = p.f;
+    if (p.has_bilateral()) rhs_.tail(rows_ - n_) = -*p.b;
+    const Vector y = solve(rhs_);
+    local_.d = p.d;
+    local_.q = H_.transpose() * y.head(n_) + p.w;
+    local_.mu = p.mu;
+    if (!form_W) {
+      local_.W.resize(0, 0);
+    } else if (p.has_bilateral()) {
+      SparseMatrix Hk = H_;
+      Hk.conservativeResize(rows_, H_.cols());
+      local_.W = H_.transpose() * SparseMatrix(solve_sparse(Hk).topRows(n_));
+    } else {
+      local_.W = H_.transpose() * solve_sparse(H_);
+    }
+    local_.W.makeCompressed();
+    seconds_ = clock.seconds();
+    return *this;
+  }
+
+  /// The reduced problem FC/II(W, q, mu) (owned; d and mu copied).
+  const LocalProblem& local() const { return local_; }
+  /// ||q|| = ||H^T M^-1 f + w||: the scale of the global error (core/error.hpp).
+  double free_velocity_norm() const { return local_.q.norm(); }
+
+  /// v = M^-1 (H r + f) (with G: the v-block of K^-1 (H r + f, -b)).
+  Vector velocity(const Eigen::Ref<const Vector>& r) const { return solve_for(r).head(n_); }
+  /// lambda, the bilateral multipliers (empty without G).
+  Vector multipliers(const Eigen::Ref<const Vector>& r) const {
+    return solve_for(r).tail(rows_ - n_);
+  }
+
+  bool uses_cholesky() const { return symmetric_; }
+  double asymmetry_of_M() const { return asymmetry_; }
+  double seconds() const { return seconds_; }
+
+ private:
+  static SparseMatrix saddle_point_matrix(const GlobalProblemView& p) {
+    const Index n = p.num_dofs(), np = p.G->cols();
+    std::vector<Eigen::Triplet<double, int>> t;
+    t.reserve(static_cast<std::size_t>(p.M.nonZeros() + 2 * p.G->nonZeros()));
+    for (Index j = 0; j < n; ++j)
+      for (SparseMap::InnerIterator it(p.M, j); it; ++it)
+        t.emplace_back(int(it.row()), int(j), it.value());
+    for (Index j = 0; j < np; ++j)
+      for (SparseMap::InnerIterator it(*p.G, j); it; ++it) {
+        t.emplace_back(int(it.row()), int(n + j), -it.value());
+        t.emplace_back(int(n + j), int(it.row()), it.value());
+      }
+    SparseMatrix K(n + np, n + np);
+    K.setFromTriplets(t.begin(), t.end());
+    K.makeCompressed();
+    return K;
+  }
+
+  void factorise_general(SparseMatrix A, const char* what) {
+    // UMFPACK reads the matrix again at solve time: keep it alive here.
+    factored_ = std::move(A);
+    factored_.makeCompressed();
+    gen_ = std::make_unique<typename Backend::GeneralSolver>();
+    gen_->compute(factored_);
+    if (gen_->info() != Eigen::Success)
+      throw InvalidProblem("M", std::string("singular or ill-formed ") + what +
+                                    ": the LU factorisation failed");
+  }
+
+  Vector solve(const Vector& b) const {
+    Vector x = symmetric_ ? Vector(sym_->solve(b)) : Vector(gen_->solve(b));
+    return x;
+  }
+  SparseMatrix solve_sparse(const SparseMatrix& B) const {
+    SparseMatrix X = symmetric_ ? SparseMatrix(sym_->solve(B)) : SparseMatrix(gen_->solve(B));
+    return X;
+  }
+  Vector solve_for(const Eigen::Ref<const Vector>& r) const {
+    Vector b = rhs_;
+    b.head(n_) += H_ * r;
+    return solve(b);
+  }
+
+  Index n_ = 0, rows_ = 0;
+  SparseMatrix H_, factored_;
+  Vector rhs_;  // (f, -b): the constant right-hand side
+  LocalProblem local_;
+  double asymmetry_ = 0, seconds_ = 0;
+  bool symmetric_ = false;
+  std::unique_ptr<typename Backend::SymmetricSolver> sym_;
+  std::unique_ptr<typename Backend::GeneralSolver> gen_;
+};
+
+}  // namespace fcsolve

@@ -1,0 +1,41 @@
+// The catalogue of every solver fcsolve ships, by name. Each family adds
+// its entries in its own header (solvers/*_entries.hpp); this file lists the
+// families. Including it instantiates every registered solver, so only
+// programs that need run-time selection (CLI, Python, benchmarks) include it.
+#pragma once
+
+#include <fcsolve/solvers/registry.hpp>
+
+namespace fcsolve {
+namespace registry {
+
+inline const std::vector<SolverEntry>& entries() {
+  static const std::vector<SolverEntry> all = [] {
+    std::vector<SolverEntry> v;
+    // Each solver family appends its entries here, e.g. add_nsgs_solvers(v);
+    return v;
+  }();
+  return all;
+}
+
+inline const SolverEntry& find(const std::string& name) {
+  for (const auto& e : entries())
+    if (e.name == name) return e;
+  std::string list;
+  for (const auto& e : entries()) list += (list.empty() ? "" : ", ") + e.name;
+  throw UsageError("unknown solver '" + name + "'" +
+                   (list.empty() ? std::string(" (no solver is registered)")
+                                 : " (available: " + list + ")"));
+}
+
+inline SolveOutcome solve(const LocalProblemView& p, const std::string& name,
+                          const SolveRequest& req) {
+  return solve(p, find(name), req);
+}
+template <class Backend = DefaultBackend>
+SolveOutcome solve(const GlobalProblemView& p, const std::string& name, const SolveRequest& req) {
+  return solve<Backend>(p, find(name), req);
+}
+
+}  // namespace registry
+}  // namespace fcsolve

@@ -1,0 +1,154 @@
+// The run-time solver catalogue: every solver family registers named entries
+// (e.g. "nsgs", "nsn-ac", "nipm") with typed settings, so the CLI, the Python
+// module and the benchmark tools reach every solver by name without knowing
+// its template parameters.
+//
+// registry::solve() is the one door they all use. It validates the problem,
+// solves a global problem natively or by reduction (W = H^T M^-1 H) with the
+// recovery of v, works on the symmetric part of W for solvers that need
+// symmetry, and recomputes the FCLIB error of the returned solution against
+// the data as given: a run is "converged" only if that error is within tol.
+#pragma once
+
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/core/solver_settings.hpp>
+#include <fcsolve/core/timer.hpp>
+#include <fcsolve/linalg/default_backend.hpp>
+#include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/problem/symmetry.hpp>
+#include <fcsolve/problem/validate.hpp>
+#include <fcsolve/solvers/settings_schema.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fcsolve {
+namespace registry {
+
+struct SolveRequest {
+  SolverSettings common;   ///< tol, max_iter, max_time, history, callback
+  SettingValues settings;  ///< the entry's own knobs (defaults unless set)
+  Vector r0;               ///< warm start for r (empty: solver's default start)
+  Vector v0;               ///< warm start for v (global-native solvers)
+};
+
+struct SolveOutcome {
+  Vector r, u, v, lambda;  ///< v, lambda only for global problems
+  SolverInfo info;         ///< status, iterations, error, timings, history
+  double seconds = 0;      ///< wall time of the whole call (incl. reduction)
+  std::string solver;
+};
+
+using LocalSolveFunction =
+    std::function<SolveOutcome(const LocalProblemView&, const SolveRequest&)>;
+using GlobalSolveFunction =
+    std::function<SolveOutcome(const GlobalProblemView&, const SolveRequest&)>;
+
+struct SolverEntry {
+  std::string name;     ///< CLI name, e.g. "nsgs-ac"
+  std::string family;   ///< "nsgs", "newton", "ipm", ...
+  std::string summary;  ///< one line for `fcsolve solvers`
+  std::vector<SettingSpec> settings;
+  /// true: the method assumes a symmetric W; on unsymmetric data it is run on
+  /// (W + W^T)/2 and its error is reported against W as given.
+  bool needs_symmetric = false;
+  /// Typical iteration budget when the caller gives none (max_iter <= 0).
+  int default_max_iter = 1000;
+  LocalSolveFunction solve_local;    ///< FC/II; may be empty if global-only
+  GlobalSolveFunction solve_global;  ///< FC/I natively; empty: by reduction
+};
+
+/// A request with the entry's default settings.
+inline SolveRequest make_request(const SolverEntry& e) {
+  SolveRequest req;
+  req.settings = SettingValues(e.settings);
+  req.common.max_iter = e.default_max_iter;
+  return req;
+}
+
+namespace detail {
+
+/// Downgrades a claimed convergence that the independent error contradicts.
+inline void enforce_tolerance(SolveOutcome& out, double error, double tol) {
+  out.info.error = error;
+  if (!std::isfinite(error)) {
+    out.info.status = Status::NumericalError;
+    out.info.message += (out.info.message.empty() ? "" : "; ") + std::string("non-finite error");
+  } else if (out.info.status == Status::Converged && !(error <= tol)) {
+    out.info.status = Status::Stalled;
+    out.info.message += (out.info.message.empty() ? "" : "; ") +
+                        std::string("solver claimed convergence but the recomputed error exceeds tol");
+  }
+}
+
+inline void check_warm_start(const Vector& x, Index size, const char* name) {
+  if (x.size() != 0 && x.size() != size)
+    throw InvalidProblem(name, "warm start has " + std::to_string(x.size()) +
+                                   " entries, expected " + std::to_string(size));
+  if (x.size() != 0 && !x.allFinite()) throw InvalidProblem(name, "warm start is not finite");
+}
+
+}  // namespace detail
+
+/// Solves FC/II with the named solver.
+inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
+  Stopwatch clock;
+  validate(p);
+  detail::check_warm_start(req.r0, p.size(), "r0");
+  if (!e.solve_local) throw UsageError("solver '" + e.name + "' does not solve local problems");
+  SolveOutcome out;
+  std::string note;
+  if (e.needs_symmetric && relative_asymmetry(p.W) > kSymmetryRoundoff) {
+    LocalProblem sym;
+    sym.d = p.d;
+    sym.W = symmetric_part(p.W);
+    sym.q = p.q;
+    sym.mu = p.mu;
+    out = e.solve_local(sym, req);
+    note = "solved on the symmetric part of W; error against W as given";
+  } else {
+    out = e.solve_local(p, req);
+  }
+  out.u = p.W * out.r + p.q;
+  detail::enforce_tolerance(out, local_error_report(p, out.r, out.u).error, req.common.tol);
+  if (!note.empty()) out.info.message = note + (out.info.message.empty() ? "" : "; " + out.info.message);
+  out.solver = e.name;
+  out.seconds = clock.seconds();
+  return out;
+}
+
+/// Solves FC/I with the named solver: natively if the entry can, else by
+/// reduction to FC/II and recovery of v (and lambda).
+template <class Backend = DefaultBackend>
+SolveOutcome solve(const GlobalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
+  Stopwatch clock;
+  validate(p);
+  detail::check_warm_start(req.r0, p.size(), "r0");
+  detail::check_warm_start(req.v0, p.num_dofs(), "v0");
+  SolveOutcome out;
+  double q_norm;
+  if (e.solve_global) {
+    out = e.solve_global(p, req);
+    q_norm = GlobalReduction<Backend>(p, /*form_W=*/false).free_velocity_norm();  // error scale
+  } else {
+    if (!e.solve_local) throw UsageError("solver '" + e.name + "' has no entry point");
+    GlobalReduction<Backend> reduction(p);
+    const double reduce_seconds = reduction.seconds();
+    out = solve(LocalProblemView(reduction.local()), e, req);
+    out.v = reduction.velocity(out.r);
+    if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
+    out.info.setup_seconds += reduce_seconds;
+    q_norm = reduction.free_velocity_norm();
+  }
+  out.u = p.H.transpose() * out.v + p.w;
+  const GlobalErrorReport rep = global_error_report(p, q_norm, out.r, out.v, out.lambda);
+  detail::enforce_tolerance(out, rep.error, req.common.tol);
+  out.solver = e.name;
+  out.seconds = clock.seconds();
+  return out;
+}
+
+}  // namespace registry
+}  // namespace fcsolve

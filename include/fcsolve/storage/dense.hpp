@@ -1,0 +1,59 @@
+// Dense storage of W for small scenes: a few contacts pay for no index
+// arrays at all. Row-major, so a block row W^{a.} is d contiguous rows.
+#pragma once
+
+#include <fcsolve/core/types.hpp>
+
+#include <vector>
+
+namespace fcsolve {
+
+template <int D, class Scalar_ = double>
+class DenseStorage {
+ public:
+  using Scalar = Scalar_;
+  static constexpr int block_dim = D;
+  static constexpr bool row_access = true;  ///< provides block_row_product
+  using Block = SmallMatrix<D, Scalar>;
+  using BlockVector = SmallVector<D, Scalar>;
+  using VectorType = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  DenseStorage() = default;
+  template <class Sparse>
+  explicit DenseStorage(const Sparse& W) { compute(W); }
+
+  template <class Sparse>
+  void compute(const Sparse& W) {
+    W_ = W.template cast<Scalar>().toDense();
+    const Index nb = W_.rows() / D;
+    diagonal_.resize(static_cast<std::size_t>(nb));
+    for (Index a = 0; a < nb; ++a) diagonal_[a] = W_.template block<D, D>(a * D, a * D);
+  }
+
+  Index size() const { return W_.rows(); }
+  Index num_blocks() const { return W_.rows() / D; }
+  const Block& diagonal_block(Index a) const { return diagonal_[static_cast<std::size_t>(a)]; }
+
+  /// y = W x
+  void multiply(const Eigen::Ref<const VectorType>& x, Eigen::Ref<VectorType> y) const {
+    y.noalias() = W_ * x;
+  }
+  /// (W x)^a = sum_b W^{ab} x^b
+  BlockVector block_row_product(Index a, const Eigen::Ref<const VectorType>& x) const {
+    return W_.template middleRows<D>(a * D) * x;
+  }
+  /// y += W^{.a} dx (column block a times dx)
+  void add_block_column(Index a, const BlockVector& dx, Eigen::Ref<VectorType> y) const {
+    y.noalias() += W_.template middleCols<D>(a * D) * dx;
+  }
+
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& matrix() const {
+    return W_;
+  }
+
+ private:
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_;
+  std::vector<Block, Eigen::aligned_allocator<Block>> diagonal_;
+};
+
+}  // namespace fcsolve

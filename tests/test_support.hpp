@@ -1,0 +1,46 @@
+// Helpers shared by the tests: where the FCLIB files are, small problems.
+#pragma once
+
+#include <fcsolve/io/fclib.hpp>
+
+#include <algorithm>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace fcsolve_test {
+
+inline bool have_shared_data() {
+  return std::filesystem::is_directory(std::filesystem::path(FCSOLVE_SHARED_DATA) / "local");
+}
+
+/// Every .hdf5 file under `sub` ("local" or "global") of the shared
+/// collection, or the bundled examples/data files of that kind when the
+/// collection is absent (a fresh clone without ../shared).
+inline std::vector<std::string> fclib_files(const std::string& sub) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> out;
+  if (have_shared_data()) {
+    for (const auto& e : fs::directory_iterator(fs::path(FCSOLVE_SHARED_DATA) / sub))
+      if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
+  } else {
+    const auto kind = sub == "local" ? fcsolve::fclib::Kind::Local : fcsolve::fclib::Kind::Global;
+    for (const auto& e : fs::directory_iterator(FCSOLVE_BUNDLED_DATA))
+      if (e.path().extension() == ".hdf5" && fcsolve::fclib::detect_kind(e.path().string()) == kind)
+        out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+inline std::string bundled(const std::string& name) {
+  return std::string(FCSOLVE_BUNDLED_DATA) + "/" + name;
+}
+
+/// A per-test scratch file name (ctest -j runs tests in parallel).
+inline std::string scratch(const std::string& name) {
+  return std::string(FCSOLVE_TEST_TMP) + "/scratch_" + name;
+}
+
+}  // namespace fcsolve_test
