@@ -116,3 +116,34 @@ TEST_CASE("dispatch_cone picks the cone of the contact dimension", "[cone]") {
   CHECK(dispatch_cone(1, [](auto c) { return decltype(c)::dim; }) == 1);
   CHECK_THROWS_AS(dispatch_cone(4, [](auto c) { return decltype(c)::dim; }), InvalidProblem);
 }
+
+#include <fcsolve/cone/jordan_algebra.hpp>
+
+TEST_CASE("Jordan algebra of the Lorentz cone", "[cone][jordan]") {
+  std::mt19937 gen(11);
+  std::normal_distribution<double> normal;
+  for (int k = 0; k < 10000; ++k) {
+    jordan::Vec<3> x, y;
+    for (int i = 0; i < 3; ++i) { x[i] = normal(gen); y[i] = normal(gen); }
+    const auto s = jordan::spectral<3>(x);
+    // x = l1 c1 + l2 c2, c1 o c2 = 0, c_i o c_i = c_i, c1 + c2 = e
+    REQUIRE((s.lambda1 * s.c1 + s.lambda2 * s.c2 - x).norm() < 1e-12);
+    REQUIRE(jordan::product<3>(s.c1, s.c2).norm() < 1e-14);
+    REQUIRE((jordan::product<3>(s.c1, s.c1) - s.c1).norm() < 1e-14);
+    REQUIRE((jordan::arrow<3>(x) * y - jordan::product<3>(x, y)).norm() < 1e-12);
+    REQUIRE(jordan::det<3>(x) == Approx(s.lambda1 * s.lambda2).margin(1e-12));
+    // P(x) y = 2 x o (x o y) - (x o x) o y
+    const jordan::Vec<3> Py = 2 * jordan::product<3>(x, jordan::product<3>(x, y)) -
+                              jordan::product<3>(jordan::product<3>(x, x), y);
+    REQUIRE((jordan::quadratic_representation<3>(x) * y - Py).norm() < 1e-10 * (1 + Py.norm()));
+    if (std::abs(jordan::det<3>(x)) > 1e-3)
+      REQUIRE((jordan::product<3>(x, jordan::inverse<3>(x)) - jordan::Vec<3>(1, 0, 0)).norm() <
+              1e-8 * (1 + x.squaredNorm() / std::abs(jordan::det<3>(x))));
+    // sqrt(x o x) = x for x in L; projection onto L = Coulomb projection with mu = 1
+    const jordan::Vec<3> p = jordan::project<3>(x);
+    // sqrt is not Lipschitz at the boundary: check it at interior points
+    const jordan::Vec<3> q = p + jordan::Vec<3>(0.1 + p.norm(), 0, 0);
+    REQUIRE((jordan::sqrt<3>(jordan::product<3>(q, q)) - q).norm() < 1e-12 * (1 + q.norm()));
+    REQUIRE((p - Coulomb3D::project(x, 1.0)).norm() < 1e-12 * (1 + x.norm()));
+  }
+}
