@@ -4,6 +4,7 @@
 // programs that need run-time selection (CLI, Python, benchmarks) include it.
 #pragma once
 
+#include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
 
 namespace fcsolve {
@@ -12,7 +13,8 @@ namespace registry {
 inline const std::vector<SolverEntry>& entries() {
   static const std::vector<SolverEntry> all = [] {
     std::vector<SolverEntry> v;
-    // Each solver family appends its entries here, e.g. add_nsgs_solvers(v);
+    // Each solver family appends its entries here.
+    add_nsgs_solvers(v);
     return v;
   }();
   return all;
