@@ -48,6 +48,7 @@ struct Enumerative {
   };
   struct Data {
     Mat W, W_inv;
+    double W_norm = 0;  ///< Frobenius norm, the scale of the residual test
     bool invertible = false;
     double mu = 0;
   };
@@ -61,20 +62,17 @@ struct Enumerative {
   static Data prepare(const Mat& W, double mu, const Settings&) {
     Data d;
     d.W = W;
+    d.W_norm = W.norm();
     d.mu = mu;
-    // closed-form inverse (d <= 3); singular when |det| is at rounding level
-    double det = 0;
-    bool ok = false;
-    W.computeInverseAndDetWithCheck(d.W_inv, det, ok, 0.0);
-    d.invertible = ok && std::abs(det) > 1e-13 * std::pow(W.norm(), dim);
-    if (!d.invertible) d.W_inv.setZero();
+    d.W_inv = OneContact<Cone>::inverse_or_zero(W);
+    d.invertible = !d.W_inv.isZero(0);
     return d;
   }
 
   /// True if r solves the one-contact problem to rounding level.
   static bool is_solution(const Data& d, const Vec& q, const Vec& r, const Settings& s) {
     if (!r.allFinite()) return false;
-    const double scale = std::max({q.norm(), d.W.norm() * r.norm(), 1e-300});
+    const double scale = std::max({q.norm(), d.W_norm * r.norm(), 1e-300});
     return OneContact<Cone>::residual(d.W, q, d.mu, r) <= s.tol * scale;
   }
 

@@ -70,6 +70,20 @@ struct OneContact {
   /// u + g(u) ∈ K* reduces to q_N >= 0 (the tangential part is absorbed by g).
   static bool takes_off(const Vec& q) { return q[0] >= 0; }
 
+  /// W^-1 by the closed form (d <= 3), or zero when |det W| is at rounding
+  /// level relative to ||W||^d.
+  static Mat inverse_or_zero(const Mat& W) {
+    Mat inv;
+    double det = 0;
+    bool ok = false;
+    W.computeInverseAndDetWithCheck(inv, det, ok, 0.0);
+    double scale = 1e-13;  // ||W||^dim, without std::pow (slow on its first call)
+    const double n = W.norm();
+    for (int i = 0; i < dim; ++i) scale *= n;
+    if (!ok || !(std::abs(det) > scale)) inv.setZero();
+    return inv;
+  }
+
   /// Eigenvalues of the symmetric part of W, increasing (closed form for
   /// d <= 3: Eigen's computeDirect).
   static Vec symmetric_eigenvalues(const Mat& W) {

@@ -1,25 +1,37 @@
-// Local solver (b): projection iterated to local convergence, with a
-// self-adaptive step and an optional proximal regularisation, for diagonal
-// blocks W^aa whose conditioning makes one projection step (local/projection.hpp)
-// a poor local solve.
+// Local solver (b): projections iterated to local convergence, with a step
+// per component and an optional proximal regularisation, for diagonal
+// blocks W^aa that one projection on the cone (local/projection.hpp) treats
+// badly: a normal stiffness far from the tangential one, strong N-T coupling.
 //
-// Extragradient iteration on the one-contact VI  -F(r) ∈ N_K(r),
-//   F(r) = u + g(u) + sigma (r - r0),  u = W r + q,
-//   rbar = P_K(r - rho F(r)),   r <- P_K(r - rho F(rbar))
-// (Korpelevich 1976), with rho adapted by the Armijo-like rule of Khobotov
-// (1987) used in Acary, Bremond & Huber 2018, sec. 4.1 [EG-VI]:
-//   shrink rho (rho <- tau rho) until rho ||F(r) - F(rbar)|| <= L ||r - rbar||,
-//   grow it (rho <- rho / tau) when the test holds with L_min instead of L.
-// sigma = regularization * lambda_max(W^aa) adds the proximal term of the
+// One iteration is a Gauss-Seidel pass over the normal and the tangential
+// parts of the Jean-Moreau formulation (Jean & Moreau 1987; Acary, Bremond &
+// Huber 2018, eq. (NSN-JM)):
+//   r_N <- P_{R+}( r_N - rho_N (u_N + sigma (r_N - r0_N)) ),
+//   r_T <- P_{D(mu r_N)}( r_T - rho_T (u_T + sigma (r_T - r0_T)) ),
+// u = W r + q recomputed after each part, D(R) the disk of radius R,
+// rho_N = 1 / (W_NN + sigma) (the exact normal solve for fixed r_T) and
+// rho_T = 1 / (lambda_max(sym W_TT) + sigma) (a safe projected-gradient step).
+// Its fixed points are exactly the one-contact solutions: the normal map is
+// Signorini's condition, the tangential one Coulomb's law on the disk of
+// radius mu r_N. Splitting N and T is what allows two step sizes; a
+// projection on the cone has one.
+// sigma = regularization * lambda_max(sym W) adds the proximal term of the
 // proximal point method (Rockafellar 1976) centred on the warm start r0: it
-// makes an ill-conditioned or singular block strongly monotone, and it does
+// makes a singular or ill-conditioned block strongly monotone, and it does
 // not move the fixed points of the NSGS sweep (r = r0 there).
-// Stops when ||r - P_K(r - F(r))|| <= tol * max(||q||, tiny).
+// Take-off (q_N >= 0) and stick (-W^-1 q ∈ K) are tested first, in closed
+// form (without regularisation only: sigma > 0 asks for the proximal step).
+// The pass is averaged with the previous iterate (Krasnoselskii-Mann, weight
+// halved whenever the residual grows): plain iteration can cycle when mu
+// times the N-T coupling is large.
+// Stops when the natural-map residual ||r - P_K(r - u - g(u))|| <= tol ||q||,
+// or (sigma > 0) when the iterates stop moving.
 #pragma once
 
 #include <fcsolve/local/one_contact.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 namespace fcsolve {
 namespace local {
@@ -27,32 +39,42 @@ namespace local {
 template <class Cone_>
 struct ProjectionIterative {
   using Cone = Cone_;
+  static constexpr int dim = Cone::dim;
   using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
+  using Mat = SmallMatrix<dim>;
   static constexpr const char* name = "projection-iterative";
 
   struct Settings {
-    double tol = 1e-12;          ///< local natural-map residual / ||q||
-    int max_iter = 100;          ///< local iterations
-    double regularization = 0;   ///< sigma / lambda_max(sym W^aa)
-    double L = 0.9;              ///< step acceptance (Khobotov)
-    double L_min = 0.3;          ///< step growth threshold
-    double tau = 2.0 / 3.0;      ///< step shrink factor
+    double tol = 1e-12;         ///< local natural-map residual / ||q||
+    int max_iter = 200;         ///< local iterations
+    double regularization = 0;  ///< sigma / lambda_max(sym W^aa)
   };
   struct Data {
-    Mat W;
+    Mat W, W_inv;            ///< W_inv: zero when W is singular
     double mu = 0;
-    double rho = 1;     ///< initial step 1 / (lambda_max + sigma)
-    double sigma = 0;   ///< proximal weight
+    double rho_n = 0, rho_t = 0;  ///< steps of the normal and tangential projections
+    double sigma = 0;             ///< proximal weight
   };
 
   static Data prepare(const Mat& W, double mu, const Settings& s) {
     Data d;
     d.W = W;
     d.mu = mu;
-    const double lmax = std::max(OneContact<Cone>::largest_eigenvalue(W), 0.0);
-    d.sigma = s.regularization * lmax;
-    d.rho = lmax + d.sigma > 0 ? 1.0 / (lmax + d.sigma) : 1.0;
+    d.W_inv = OneContact<Cone>::inverse_or_zero(W);
+    d.sigma = s.regularization * std::max(OneContact<Cone>::largest_eigenvalue(W), 0.0);
+    const double wn = W(0, 0) + d.sigma;
+    d.rho_n = wn > 0 ? 1 / wn : 0;  // a zero block cannot move r
+    if constexpr (dim > 1) {
+      const SmallMatrix<dim - 1> Wt = W.template bottomRightCorner<dim - 1, dim - 1>();
+      const SmallMatrix<dim - 1> S = 0.5 * (Wt + Wt.transpose());
+      double lt = S(0, 0);
+      if constexpr (dim == 3) {  // largest eigenvalue of a symmetric 2 x 2
+        const double mean = 0.5 * (S(0, 0) + S(1, 1)), half = 0.5 * (S(0, 0) - S(1, 1));
+        lt = mean + std::sqrt(half * half + S(0, 1) * S(0, 1));
+      }
+      lt += d.sigma;
+      d.rho_t = lt > 0 ? 1 / lt : 0;
+    }
     return d;
   }
 
@@ -64,32 +86,41 @@ struct ProjectionIterative {
       res.kind = ContactCase::TakeOff;
       return res;
     }
+    const Vec stick = -d.W_inv * q;  // exact when it lies in K (zero if W is singular)
+    if (d.sigma == 0 && Cone::contains(stick, d.mu) && stick.squaredNorm() > 0) {
+      r = stick;
+      res.converged = true;
+      res.kind = ContactCase::Stick;
+      return res;
+    }
     const Vec r0 = r;
-    const auto F = [&](const Vec& x) -> Vec {
-      const Vec u = OneContact<Cone>::velocity(d.W, q, x);
-      return Cone::modified_velocity(u, d.mu) + d.sigma * (x - r0);
-    };
     const double scale = std::max(q.norm(), 1e-300);
-    double rho = d.rho;
-    for (res.iterations = 0; res.iterations < s.max_iter; ++res.iterations) {
-      const Vec Fr = F(r);
-      if ((r - Cone::project(Vec(r - Fr), d.mu)).norm() <= s.tol * scale) {
+    double residual = OneContact<Cone>::residual(d.W, q, d.mu, r);
+    double relax = 1;  // Krasnoselskii-Mann averaging, halved when the residual grows
+    for (res.iterations = 1; res.iterations <= s.max_iter; ++res.iterations) {
+      const Vec r_prev = r;
+      const double un = d.W.row(0).dot(r) + q[0];
+      r[0] = std::max(0.0, r[0] - d.rho_n * (un + d.sigma * (r[0] - r0[0])));
+      if constexpr (dim > 1) {
+        constexpr int t = dim - 1;
+        const SmallVector<t> ut = d.W.template bottomRows<t>() * r + q.template tail<t>();
+        SmallVector<t> rt = r.template tail<t>() -
+                            d.rho_t * (ut + d.sigma * (r.template tail<t>() - r0.template tail<t>()));
+        const double radius = d.mu * r[0], norm = rt.norm();
+        if (norm > radius) rt *= norm > 0 ? radius / norm : 0.0;
+        r.template tail<t>() = rt;
+      }
+      if (relax < 1) r = r_prev + relax * (r - r_prev);  // stays in K (convex)
+      const double next = OneContact<Cone>::residual(d.W, q, d.mu, r);
+      if (next <= s.tol * scale ||
+          (d.sigma > 0 && (r - r_prev).norm() <= s.tol * std::max(r.norm(), 1e-300))) {
         res.converged = true;
         break;
       }
-      Vec rbar, Fbar;
-      double ratio = 0;  // rho ||F(r) - F(rbar)|| / ||r - rbar||
-      for (int shrink = 0; shrink < 60; ++shrink) {
-        rbar = Cone::project(Vec(r - rho * Fr), d.mu);
-        Fbar = F(rbar);
-        const double step = (r - rbar).norm();
-        ratio = step > 0 ? rho * (Fr - Fbar).norm() / step : 0;
-        if (ratio <= s.L) break;
-        rho *= s.tau;
-      }
-      r = Cone::project(Vec(r - rho * Fbar), d.mu);
-      if (ratio < s.L_min) rho /= s.tau;
+      if (next > residual && relax > 1.0 / 64) relax *= 0.5;
+      residual = next;
     }
+    res.iterations = std::min(res.iterations, s.max_iter);
     return res;
   }
 };

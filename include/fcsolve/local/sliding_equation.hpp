@@ -65,9 +65,10 @@ struct SlidingEquation {
 
   /// Newton on th from direction t (updated in place). The step dth =
   /// -f / f' is taken as a rotation by atan(dth): the same to third order, so
-  /// still quadratic, and never more than a quarter turn. Returns false if
-  /// f' vanishes.
-  bool newton(Vec2& t, int max_iter, double tol = 1e-15) const {
+  /// still quadratic, and never more than a quarter turn. Stops after a step
+  /// below `tol` (quadratic convergence: the next one would be at rounding
+  /// level). Returns false if f' vanishes or the iteration does not settle.
+  bool newton(Vec2& t, int max_iter, double tol = 1e-9) const {
     for (int it = 0; it < max_iter; ++it) {
       const double df = derivative(t);
       if (df == 0 || !std::isfinite(df)) return false;
@@ -76,7 +77,7 @@ struct SlidingEquation {
       t = Vec2(t[0] - step * t[1], t[1] + step * t[0]) * h;
       if (std::abs(step) <= tol) return true;
     }
-    return true;
+    return false;
   }
 
   /// Every root direction: the real parts of the quartic's roots (companion

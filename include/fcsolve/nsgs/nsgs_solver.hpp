@@ -102,9 +102,12 @@ class Nsgs {
     info_.setup_seconds = setup;
     if (s.record_history) info_.history.reserve(std::size_t(std::min(s.max_iter, 100000)) + 1);
 
-    std::mt19937 rng(s.seed);
+    ContactOrdering ordering = s.ordering;
     std::iota(order_.begin(), order_.end(), Index(0));
-    if (s.ordering != ContactOrdering::Natural) std::shuffle(order_.begin(), order_.end(), rng);
+    if (ordering != ContactOrdering::Natural) {
+      rng_.seed(s.seed);
+      std::shuffle(order_.begin(), order_.end(), rng_);
+    }
     std::fill(frozen_.begin(), frozen_.end(), 0);
     local_failures_ = 0;
 
@@ -116,11 +119,13 @@ class Nsgs {
 
     const int every = std::max(s.error_every, 1);
     double ratio = 1;  // full error / relative change, at the last full evaluation
+    double progress_error = error;  // stall detection: last 1% improvement
+    int progress_sweep = 0;
     Status status = Status::MaxIterations;
     for (int sweep_no = 1; sweep_no <= s.max_iter; ++sweep_no) {
       FCSOLVE_NO_MALLOC_BEGIN();
-      if (s.ordering == ContactOrdering::ShuffledEachSweep)
-        std::shuffle(order_.begin(), order_.end(), rng);
+      if (ordering == ContactOrdering::ShuffledEachSweep)
+        std::shuffle(order_.begin(), order_.end(), rng_);
       const SweepResult sw = sweep(r);
       const double change = std::sqrt(sw.change2 / std::max(r.squaredNorm(), 1e-300));
       const bool last = sweep_no == s.max_iter;
@@ -146,12 +151,23 @@ class Nsgs {
           status = Status::Converged;
           break;
         }
+        if (error < 0.99 * progress_error) {
+          progress_error = error;
+          progress_sweep = sweep_no;
+        } else if (s.stall_sweeps > 0 && sweep_no - progress_sweep >= s.stall_sweeps &&
+                   ordering != ContactOrdering::ShuffledEachSweep) {
+          if (ordering == ContactOrdering::Natural) rng_.seed(s.seed);
+          ordering = ContactOrdering::ShuffledEachSweep;
+          progress_sweep = sweep_no;
+          note("no progress: contacts reshuffled every sweep from sweep " +
+               std::to_string(sweep_no));
+        }
         if (sw.skipped > 0 && change * ratio <= s.tol) {
           // converged on the visited contacts only: check the frozen ones
           std::fill(frozen_.begin(), frozen_.end(), 0);
         } else if (change == 0 && sw.skipped == 0) {
           status = Status::Stalled;  // a fixed point of the sweep that is not a solution
-          info_.message = "the sweep no longer changes r";
+          note("the sweep no longer changes r");
           break;
         }
       }
@@ -243,10 +259,13 @@ class Nsgs {
     info_.status = status;
     info_.error = best_error_;
     if (local_failures_ > 0)
-      info_.message += (info_.message.empty() ? "" : "; ") + std::to_string(local_failures_) +
-                       " local solves did not converge";
+      note(std::to_string(local_failures_) + " local solves did not converge");
     info_.solve_seconds = clock.seconds();
     return info_;
+  }
+
+  void note(const std::string& text) {
+    info_.message += (info_.message.empty() ? "" : "; ") + text;
   }
 
   void check_solve_arguments(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& u) const {
@@ -270,6 +289,7 @@ class Nsgs {
   std::vector<typename LocalSolver::Data, Eigen::aligned_allocator<typename LocalSolver::Data>> data_;
   std::vector<Index> order_;
   std::vector<int> frozen_;
+  std::minstd_rand rng_;  // small state: cheap to construct and seed
   Vector u_, work_, best_;
   double scale_ = 1, best_error_ = 0;
   long long local_failures_ = 0;

@@ -26,6 +26,9 @@ inline std::vector<SettingSpec> common_settings(double omega) {
                      "contact order: natural, shuffled once, reshuffled every sweep"),
       boolean_setting("shuffle", false, "same as --ordering shuffle"),
       integer_setting("seed", 0, "seed of the contact shuffles", 0, 4294967295.0),
+      integer_setting("stall_sweeps", 2000,
+                      "reshuffle every sweep after this many sweeps without 1% progress (0: never)",
+                      0, 1e9),
       integer_setting("error_every", 10, "full error at least every k sweeps", 1, 1e9),
       integer_setting("freezing", 0,
                       "skip a contact for k sweeps once its local solution stops moving (0: off)",
@@ -43,6 +46,7 @@ void apply_common(const SolveRequest& req, Settings& s) {
                : o == "shuffle" || v.boolean("shuffle") ? ContactOrdering::ShuffledOnce
                                                         : ContactOrdering::Natural;
   s.seed = static_cast<std::uint32_t>(v.integer("seed"));
+  s.stall_sweeps = static_cast<int>(v.integer("stall_sweeps"));
   s.error_every = static_cast<int>(v.integer("error_every"));
   s.freezing = static_cast<int>(v.integer("freezing"));
 }
@@ -84,7 +88,7 @@ SolverEntry make_entry(std::string name, std::string summary, std::vector<Settin
   e.summary = std::move(summary);
   e.settings = common_settings(omega);
   e.settings.insert(e.settings.end(), local.begin(), local.end());
-  e.default_max_iter = 100000;
+  e.default_max_iter = 1000000;
   e.solve_local = [configure](const LocalProblemView& view, const SolveRequest& req) {
     return solve_with<Local>(view, req, configure);
   };
@@ -100,6 +104,9 @@ inline const auto configure_projection_iterative = [](const SettingValues& v, au
   s.regularization = v.real("regularization");
 };
 inline const auto configure_nothing = [](const SettingValues&, auto&) {};
+inline const auto configure_enumerative = [](const SettingValues& v, auto& s) {
+  s.newton_first = v.boolean("newton_first");
+};
 
 inline std::vector<SettingSpec> projection_settings() {
   return {real_setting("rho_scale", 1.0, "projection step rho = rho_scale / lambda_max(W^aa)", 1e-6,
@@ -110,18 +117,23 @@ inline std::vector<SettingSpec> projection_settings() {
 
 inline void add_nsgs_solvers(std::vector<SolverEntry>& v) {
   using namespace nsgs_detail;
+  v.push_back(make_entry<local::Enumerative>(
+      "nsgs", "nonsmooth Gauss-Seidel, exact one-contact solutions (fast enumeration)", {},
+      configure_nothing));
+  v.push_back(make_entry<local::Projection>(
+      "nsgs-proj", "nonsmooth Gauss-Seidel, one projection step per contact (rho from W^aa)",
+      projection_settings(), configure_projection));
   v.push_back(make_entry<local::ProjectionIterative>(
-      "nsgs", "nonsmooth Gauss-Seidel, iterated projection local solver", 
+      "nsgs-proj-iter", "nonsmooth Gauss-Seidel, projection iterated to local convergence",
       {real_setting("local_tol", 1e-12, "local residual tolerance (relative to ||qhat||)", 0, 1),
        integer_setting("local_max_iter", 100, "local iterations", 1, 1e6),
        real_setting("regularization", 0.0, "proximal weight / lambda_max(W^aa)", 0, 1e6)},
       configure_projection_iterative));
-  v.push_back(make_entry<local::Projection>(
-      "nsgs-proj", "nonsmooth Gauss-Seidel, one projection step per contact (rho from W^aa)",
-      projection_settings(), configure_projection));
   v.push_back(make_entry<local::Enumerative>(
-      "nsgs-exact", "nonsmooth Gauss-Seidel, exact one-contact solution by enumeration", {},
-      configure_nothing));
+      "nsgs-exact", "nonsmooth Gauss-Seidel, exact one-contact solution by enumeration",
+      {boolean_setting("newton_first", false,
+                       "try Newton on the sliding direction before the full enumeration")},
+      configure_enumerative));
   v.push_back(make_entry<local::Projection>(
       "psor", "projected successive over-relaxation (NSGS-projection with omega)",
       projection_settings(), configure_projection, 1.0));
