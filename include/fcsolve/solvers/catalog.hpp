@@ -6,6 +6,7 @@
 
 #include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
+#include <fcsolve/solvers/vi_entries.hpp>
 
 namespace fcsolve {
 namespace registry {
@@ -15,6 +16,7 @@ inline const std::vector<SolverEntry>& entries() {
     std::vector<SolverEntry> v;
     // Each solver family appends its entries here.
     add_nsgs_solvers(v);
+    add_vi_solvers(v);
     return v;
   }();
   return all;
