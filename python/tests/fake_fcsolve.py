@@ -7,6 +7,8 @@ solvers that misbehave. `solvers --json` lists them; `solve FILE --solver S
   sleepy    starts a child process (its pid goes to $FAKE_PID_FILE), then sleeps
   suicidal  kills itself with SIGSEGV
   mute      exits 0 and prints nothing
+  slowfirst as zero, but reports 1 s on its first call and 0.25 s afterwards
+            (calls counted in $FAKE_COUNT_FILE)
 """
 import json
 import os
@@ -15,7 +17,7 @@ import subprocess
 import sys
 import time
 
-SOLVERS = ["zero", "sleepy", "suicidal", "mute"]
+SOLVERS = ["zero", "sleepy", "suicidal", "mute", "slowfirst"]
 
 
 def option(args, name, default=None):
@@ -55,8 +57,15 @@ def main(args):
         s.create_dataset("r", data=np.zeros(m))
         if v is not None:
             s.create_dataset("v", data=v)
+    seconds = 0.001
+    if solver == "slowfirst":
+        count_file = os.environ["FAKE_COUNT_FILE"]
+        calls = int(open(count_file).read()) if os.path.exists(count_file) else 0
+        with open(count_file, "w") as f:
+            f.write(str(calls + 1))
+        seconds = 1.0 if calls == 0 else 0.25
     print(json.dumps(dict(solver=solver, status="converged", iterations=0, error=0.0,
-                          seconds=0.001, setup_seconds=0.0, solve_seconds=0.001, message="")))
+                          seconds=seconds, setup_seconds=0.0, solve_seconds=seconds, message="")))
     return 0
 
 

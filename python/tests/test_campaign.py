@@ -76,6 +76,16 @@ def test_resume_adds_nothing_and_redo_reruns(tmp_path, trivial):
     assert redo["ran"] == 1 and len(rows4) == 5
 
 
+def test_repeat_keeps_the_fastest_time(tmp_path, trivial, monkeypatch):
+    monkeypatch.setenv("FAKE_COUNT_FILE", str(tmp_path / "calls"))
+    _, (row,), _ = bench(trivial[:1], tmp_path / "once", solvers="slowfirst")
+    assert row["seconds"] == 1.0
+    (tmp_path / "calls").unlink()
+    _, (row,), _ = bench(trivial[:1], tmp_path / "thrice", solvers="slowfirst", repeat=3)
+    assert row["seconds"] == 0.25 and row["failure"] == "converged"
+    assert (tmp_path / "calls").read_text() == "3"
+
+
 def test_timeout_kills_the_process_group(tmp_path, trivial, monkeypatch):
     pid_file = tmp_path / "child.pid"
     monkeypatch.setenv("FAKE_PID_FILE", str(pid_file))

@@ -59,6 +59,9 @@ def parser():
                    help=f"Python for the peer runners; default {DEFAULT_PEER_PYTHON}")
     b.add_argument("--redo", type=_classes, default=[],
                    help="run again the runs of these failure classes (e.g. crash,timeout)")
+    b.add_argument("--repeat", type=int, default=1,
+                   help="run each solve N times and keep the fastest time (short runs are noisy); "
+                        "default 1")
     b.add_argument("--keep-solutions", action="store_true", help="keep DIR/solutions/*.hdf5")
     b.add_argument("--report", action="store_true", help="then write the report (fcsolve report)")
     r = sub.add_parser("report", help="charts and an HTML page from DIR/results.csv")
@@ -78,7 +81,7 @@ def main(argv=None):
             run_campaign(a.problems, solvers=a.solvers, tols=a.tol, timeout=a.timeout,
                          out_dir=a.out, jobs=a.jobs, dask=a.dask, fcsolve=a.fcsolve,
                          peer_python=a.peer_python, max_iter=a.max_iter, grace=a.grace,
-                         redo=a.redo, keep_solutions=a.keep_solutions)
+                         redo=a.redo, keep_solutions=a.keep_solutions, repeat=a.repeat)
             if not a.report:
                 return 0
             report_dir = a.out

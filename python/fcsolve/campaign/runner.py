@@ -19,7 +19,7 @@ def _solution_path(out_dir, task_name):
 
 
 def plan(problem_files, solver_specs, tols, timeout, out_dir, grace=2.0, max_iter=None,
-         keep_solutions=False, done=frozenset()):
+         keep_solutions=False, done=frozenset(), repeat=1):
     """The tasks still to run, and the combinations skipped as unsupported."""
     out_dir = os.path.abspath(out_dir)  # runs may execute elsewhere (Dask workers)
     files = _problems.find_problem_files(problem_files)
@@ -41,7 +41,7 @@ def plan(problem_files, solver_specs, tols, timeout, out_dir, grace=2.0, max_ite
                 t = Task(problem=name, file=os.path.abspath(path), solver=s.name, tol=float(tol),
                          timeout=float(timeout), kill_after=float(timeout) + grace, argv=[],
                          solution="", log_dir=os.path.join(out_dir, "logs"), meta=meta,
-                         keep_solution=keep_solutions)
+                         keep_solution=keep_solutions, repeat=max(1, int(repeat)))
                 t.solution = os.path.abspath(_solution_path(out_dir, log_name(t)))
                 t.argv = s.command(t.file, tol, timeout, t.solution, max_iter)
                 task_list.append(t)
@@ -72,7 +72,7 @@ def _record(out_dir, entry):
 
 def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_dir="campaign",
                  jobs=None, dask=None, fcsolve=None, peer_python=_solvers.DEFAULT_PEER_PYTHON,
-                 max_iter=None, grace=2.0, redo=(), keep_solutions=False, stream=None):
+                 max_iter=None, grace=2.0, redo=(), keep_solutions=False, repeat=1, stream=None):
     """Runs a campaign and returns {"ran": n, "skipped": n, "csv": path}."""
     stream = stream or sys.stdout
 
@@ -87,7 +87,7 @@ def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_d
         results.drop(set(redo))
     done = results.keys()
     task_list, unsupported = plan(problem_files, specs, tols, timeout, out_dir, grace, max_iter,
-                                  keep_solutions, done)
+                                  keep_solutions, done, repeat)
     skipped = len(done)
     executor = make_executor(jobs, dask)
     say(f"fcsolve bench: {len(task_list)} runs to do ({skipped} already in {results.path}), "
@@ -100,7 +100,8 @@ def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_d
         cpus=os.cpu_count(), machine=platform.machine(), fcsolve=fcsolve,
         fcsolve_version=_fcsolve_version(fcsolve), executor=executor.describe(),
         solvers=[dict(name=s.name, family=s.family, peer=s.peer) for s in specs],
-        tols=[float(t) for t in tols], timeout=timeout, max_iter=max_iter, runs=len(task_list)))
+        tols=[float(t) for t in tols], timeout=timeout, max_iter=max_iter, repeat=repeat,
+        runs=len(task_list)))
     progress = Progress(len(task_list), stream=stream)
     try:
         for row in executor.run(task_list):
