@@ -56,7 +56,7 @@ def test_schema_and_false_claims(tmp_path, trivial):
         assert rover["status"] == "converged" and rover["own_error"] == 0.0
         assert rover["error"] > 1e-2 and rover["failure"] == "inaccurate" and not rover["solved"]
         assert rover["family"] == "Rover" and rover["time_limit"] == 20.0
-    assert not os.listdir(tmp_path / "c" / "solutions")  # solution files removed
+    assert not (tmp_path / "c" / "solutions").exists()  # solution files removed
     assert "6 runs" in log
 
 

@@ -77,6 +77,8 @@ def test_summary_and_work_precision(tmp_path):
     assert a["geomean_seconds"] == pytest.approx(2.0) and a["failures"] == {"converged": 2, "timeout": 1}
     assert b["solved_fraction"] == 1 and b["geomean_seconds"] == pytest.approx(40 ** (1 / 3))
     assert (c["runs"], c["solved"]) == (2, 1)
+    fam = analysis.by_family(rows, 1e-8)
+    assert fam == {"P": {"A": (2, 3), "B": (3, 3), "C": (1, 3)}}
     wp = analysis.work_precision(rows)
     # unsolved and missing runs count at the time limit (20 s), over all 3 problems
     assert wp["A"][1] == (1e-8, pytest.approx((1 * 4 * 20) ** (1 / 3)), pytest.approx(2 / 3))

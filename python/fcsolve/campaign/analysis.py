@@ -101,6 +101,21 @@ def summary(rows):
     return out
 
 
+def by_family(rows, tol):
+    """{family: {solver: (solved, problems)}} at one tolerance; `problems`
+    counts every problem of the family, run by that solver or not."""
+    at = [r for r in rows if r["tol"] == tol]
+    family_of = {r["problem"]: r.get("family") or "" for r in at}
+    sizes = {}
+    for p, f in family_of.items():
+        sizes[f] = sizes.get(f, 0) + 1
+    out = {f: {s: [0, n] for s in solver_names(at)} for f, n in sorted(sizes.items())}
+    for r in at:
+        if r["solved"]:
+            out[family_of[r["problem"]]][r["solver"]][0] += 1
+    return {f: {s: tuple(v) for s, v in d.items()} for f, d in out.items()}
+
+
 def work_precision(rows):
     """Time to reach each accuracy, per solver: {solver: [(tol, time, fraction)]}.
 

@@ -39,10 +39,19 @@ def _summary_table(rows):
     return _table(header, body, "summary")
 
 
+def _family_table(rows, tol):
+    table = analysis.by_family(rows, tol)
+    solvers = analysis.solver_names([r for r in rows if r["tol"] == tol])
+    body = [[html.escape(f)] + [f"{d[s][0]}/{d[s][1]}" for s in solvers] for f, d in table.items()]
+    return f"<p>Solved per problem family, tol {tol:g}:</p>" + _table(["family"] + solvers, body)
+
+
 def _runs_table(rows):
     cols = ["problem", "family", "kind", "nc", "solver", "tol", "failure", "status", "seconds",
             "iterations", "own_error", "error", "message"]
     body = []
+    order = {s: k for k, s in enumerate(analysis.solver_names(rows))}
+    rows = sorted(rows, key=lambda r: (r["problem"], order[r["solver"]], -r["tol"]))
     for r in rows[:MAX_TABLE_ROWS]:
         cells = []
         for c in cols:
@@ -127,7 +136,8 @@ def build_report(out_dir, report_dir=None):
                     "max-iterations, stalled, diverged, nan, inaccurate (the solver claimed "
                     "convergence, the recomputed error says otherwise), timeout (killed at the "
                     "limit), crash (died or returned no usable solution); white: not run (kind not "
-                    "supported).</p>" + "".join(_img(p, "failure map") for p in maps))
+                    "supported).</p>" + "".join(_img(p, "failure map") + _family_table(rows, t)
+                                                for p, t in zip(maps, tols)))
     sections.append("<h2>Every run</h2><details><summary>show the table</summary>"
                     + _runs_table(rows) + "</details>")
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>fcsolve campaign</title>"

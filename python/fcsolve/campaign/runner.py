@@ -109,5 +109,8 @@ def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_d
             progress.update(row)
     finally:
         executor.close()
+        solutions = os.path.join(out_dir, "solutions")
+        if os.path.isdir(solutions) and not os.listdir(solutions):
+            os.rmdir(solutions)
     say("fcsolve bench: " + progress.summary() + f"; results in {results.path}")
     return dict(ran=progress.done, skipped=skipped, csv=results.path)
