@@ -109,7 +109,10 @@ def test_timeout_kills_the_process_group(tmp_path, trivial, monkeypatch):
 
 
 def test_crashes_are_recorded(tmp_path, trivial):
-    _, rows, _ = bench(trivial[:1], tmp_path / "c", solvers="suicidal,mute")
+    junk = tmp_path / "junk.hdf5"
+    junk.write_bytes(b"not an HDF5 file")
+    _, rows, log = bench(trivial[:1] + [junk], tmp_path / "c", solvers="suicidal,mute")
+    assert f"skipped {junk}" in log  # an unreadable file is reported, the campaign goes on
     by = {r["solver"]: r for r in rows}
     assert by["suicidal"]["failure"] == "crash" and by["suicidal"]["exit_code"] == -11
     assert "signal 11" in by["suicidal"]["message"]

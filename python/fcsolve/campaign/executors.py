@@ -69,8 +69,8 @@ class DaskExecutor:
     def run(self, task_list):
         campaign_dir = os.path.dirname(os.path.abspath(__file__))
         futures = [self.client.submit(self._bootstrap.run_task_dict, campaign_dir,
-                                      dataclasses.asdict(t), pure=False, key=f"fcsolve-run-{k}-{id(t)}")
-                   for k, t in enumerate(task_list)]
+                                      dataclasses.asdict(t), pure=False)
+                   for t in task_list]
         try:
             for fut in self._distributed.as_completed(futures):
                 yield fut.result()

@@ -69,12 +69,26 @@ def _runs_table(rows):
     return note + _table(cols, body, "runs")
 
 
-def _campaign_info(out_dir):
+def _invocations(out_dir):
+    """What campaign.json recorded of each `fcsolve bench` (may be absent)."""
     path = os.path.join(out_dir, "campaign.json")
     if not os.path.exists(path):
-        return ""
+        return []
     with open(path) as f:
-        inv = json.load(f).get("invocations", [])
+        return json.load(f).get("invocations", [])
+
+
+def _registration_order(rows, out_dir):
+    """Rows with solvers in the order the campaign named them (catalogue order)."""
+    order = {}
+    for inv in _invocations(out_dir):
+        for s in inv.get("solvers", []):
+            order.setdefault(s["name"], len(order))
+    return sorted(rows, key=lambda r: order.get(r["solver"], len(order)))
+
+
+def _campaign_info(out_dir):
+    inv = _invocations(out_dir)
     if not inv:
         return ""
     last = inv[-1]
@@ -104,6 +118,7 @@ def build_report(out_dir, report_dir=None):
     rows = load_results(csv_path(out_dir))
     if not rows:
         raise RuntimeError(f"{csv_path(out_dir)} has no runs")
+    rows = _registration_order(rows, out_dir)
     report_dir = report_dir or os.path.join(out_dir, "report")
     os.makedirs(report_dir, exist_ok=True)
     styles = charts.solver_styles(analysis.solver_names(rows))

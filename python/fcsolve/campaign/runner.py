@@ -20,15 +20,19 @@ def _solution_path(out_dir, task_name):
 
 def plan(problem_files, solver_specs, tols, timeout, out_dir, grace=2.0, max_iter=None,
          keep_solutions=False, done=frozenset(), repeat=1):
-    """The tasks still to run, and the combinations skipped as unsupported."""
+    """(tasks still to run, (problem, solver) pairs not supported, (file, why) unreadable)."""
     out_dir = os.path.abspath(out_dir)  # runs may execute elsewhere (Dask workers)
     files = _problems.find_problem_files(problem_files)
     if not files:
         raise RuntimeError("no problem file given")
     names = _problems.problem_names(files)
-    task_list, unsupported = [], []
+    task_list, unsupported, unreadable = [], [], []
     for path, name in zip(files, names):
-        info = _problems.problem_info(path)
+        try:
+            info = _problems.problem_info(path)
+        except (OSError, KeyError, ValueError) as e:  # not an FCLIB problem: say so, go on
+            unreadable.append((path, f"{type(e).__name__}: {e}"))
+            continue
         meta = dict(kind=info["kind"], nc=info["nc"], n=info["n"], m=info["m"],
                     family=_problems.problem_family(name))
         for s in solver_specs:
@@ -45,7 +49,7 @@ def plan(problem_files, solver_specs, tols, timeout, out_dir, grace=2.0, max_ite
                 t.solution = os.path.abspath(_solution_path(out_dir, log_name(t)))
                 t.argv = s.command(t.file, tol, timeout, t.solution, max_iter)
                 task_list.append(t)
-    return task_list, unsupported
+    return task_list, unsupported, unreadable
 
 
 def _fcsolve_version(fcsolve):
@@ -86,13 +90,15 @@ def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_d
     if redo:
         results.drop(set(redo))
     done = results.keys()
-    task_list, unsupported = plan(problem_files, specs, tols, timeout, out_dir, grace, max_iter,
-                                  keep_solutions, done, repeat)
+    task_list, unsupported, unreadable = plan(problem_files, specs, tols, timeout, out_dir, grace,
+                                              max_iter, keep_solutions, done, repeat)
     skipped = len(done)
     executor = make_executor(jobs, dask)
     say(f"fcsolve bench: {len(task_list)} runs to do ({skipped} already in {results.path}), "
         f"solvers {', '.join(s.name for s in specs)}, tol {', '.join(f'{t:g}' for t in tols)}, "
         f"limit {timeout:g} s, {executor.describe()}")
+    for path, why in unreadable:
+        say(f"  skipped {path}: {why}")
     for problem, solver in sorted(set(unsupported)):
         say(f"  not run: {solver} does not solve {problem} (kind not supported)")
     _record(out_dir, dict(
