@@ -5,6 +5,7 @@ solvers come from fake_fcsolve.py; real runs use the built binary."""
 import csv
 import io
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -106,6 +107,34 @@ def test_timeout_kills_the_process_group(tmp_path, trivial, monkeypatch):
         pytest.fail(f"child process {child} of the timed-out run is still alive")
     logs = os.listdir(tmp_path / "c" / "logs")
     assert len(logs) == 1 and "sleepy" in logs[0]
+
+
+def test_ctrl_c_stops_the_campaign_and_its_runs(tmp_path, trivial):
+    pid_file = tmp_path / "child.pid"
+    env = dict(os.environ, FAKE_PID_FILE=str(pid_file))
+    proc = subprocess.Popen(
+        [sys.executable, str(ROOT / "python/fcsolve/campaign/__main__.py"), "bench", trivial[0],
+         "--fcsolve", str(FAKE_CLI), "--solvers", "sleepy", "--tol", "1e-2,1e-3,1e-4",
+         "--timeout", "60", "--jobs", "1", "--out", str(tmp_path / "c")],
+        env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    for _ in range(100):  # wait for the first run to be under way
+        if pid_file.exists() and pid_file.read_text():
+            break
+        time.sleep(0.1)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=20)
+    assert proc.returncode == 130 and "interrupted" in err
+    child = int(pid_file.read_text())
+    for _ in range(50):
+        try:
+            os.kill(child, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.1)
+    else:
+        pytest.fail(f"process {child} of the interrupted run is still alive")
+    assert results.load_results(str(tmp_path / "c")) == []  # the killed run is not recorded
 
 
 def test_crashes_are_recorded(tmp_path, trivial):

@@ -21,6 +21,7 @@ class LocalExecutor:
         return f"local, {self.jobs} job{'s' if self.jobs > 1 else ''}"
 
     def run(self, task_list):
+        _tasks.allow_runs()
         pool = concurrent.futures.ThreadPoolExecutor(max_workers=self.jobs)
         try:
             futures = [pool.submit(_tasks.run_task, t) for t in task_list]
@@ -30,6 +31,7 @@ class LocalExecutor:
             pool.shutdown(wait=False, cancel_futures=True)
             _tasks.kill_all()
             pool.shutdown(wait=True)
+            _tasks.allow_runs()
 
     def close(self):
         pass

@@ -22,6 +22,7 @@ from .results import solved
 
 _live = set()
 _live_lock = threading.Lock()
+_stopping = threading.Event()  # set by kill_all: no new process starts
 
 
 @dataclasses.dataclass
@@ -44,10 +45,12 @@ class Task:
 def _run(argv, limit, env):
     """(returncode, stdout, stderr, wall seconds, timed out) of argv under a limit."""
     start = time.perf_counter()
-    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            stdin=subprocess.DEVNULL, start_new_session=True, env=env, text=True,
-                            errors="replace")
     with _live_lock:
+        if _stopping.is_set():
+            raise OSError("the campaign is stopping")
+        proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                stdin=subprocess.DEVNULL, start_new_session=True, env=env,
+                                text=True, errors="replace")
         _live.add(proc)
     try:
         out, err = proc.communicate(timeout=limit)
@@ -70,11 +73,17 @@ def _kill_group(proc):
 
 
 def kill_all():
-    """Kills every running solver process group (on Ctrl-C)."""
+    """Kills every running solver process group and starts no new one (Ctrl-C)."""
     with _live_lock:
+        _stopping.set()
         procs = list(_live)
     for p in procs:
         _kill_group(p)
+
+
+def allow_runs():
+    """Undoes kill_all for the next campaign in this process."""
+    _stopping.clear()
 
 
 def _report(stdout):
