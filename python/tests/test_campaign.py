@@ -22,6 +22,17 @@ BRIEF_COLUMNS = ["problem", "kind", "nc", "n", "m", "solver", "tol", "status", "
 needs_cli = pytest.mark.skipif(real_cli() is None, reason="build/fcsolve not built")
 
 
+def assert_gone(pid):
+    """The process `pid` ends within 5 s."""
+    for _ in range(50):
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.1)
+    pytest.fail(f"process {pid} is still alive")
+
+
 def bench(problems, out, **kw):
     kw.setdefault("fcsolve", str(FAKE_CLI))
     kw.setdefault("jobs", 2)
@@ -96,15 +107,7 @@ def test_timeout_kills_the_process_group(tmp_path, trivial, monkeypatch):
     (row,) = rows
     assert row["failure"] == "timeout" and row["status"] == "timeout" and row["error"] is None
     assert 0.9 <= row["wall_seconds"] < 10 and "killed after" in row["message"]
-    child = int(pid_file.read_text())
-    for _ in range(50):  # the sleeping grandchild went with its group
-        try:
-            os.kill(child, 0)
-        except ProcessLookupError:
-            break
-        time.sleep(0.1)
-    else:
-        pytest.fail(f"child process {child} of the timed-out run is still alive")
+    assert_gone(int(pid_file.read_text()))  # the sleeping grandchild went with its group
     logs = os.listdir(tmp_path / "c" / "logs")
     assert len(logs) == 1 and "sleepy" in logs[0]
 
@@ -125,15 +128,7 @@ def test_ctrl_c_stops_the_campaign_and_its_runs(tmp_path, trivial):
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=20)
     assert proc.returncode == 130 and "interrupted" in err
-    child = int(pid_file.read_text())
-    for _ in range(50):
-        try:
-            os.kill(child, 0)
-        except ProcessLookupError:
-            break
-        time.sleep(0.1)
-    else:
-        pytest.fail(f"process {child} of the interrupted run is still alive")
+    assert_gone(int(pid_file.read_text()))
     assert results.load_results(str(tmp_path / "c")) == []  # the killed run is not recorded
 
 
