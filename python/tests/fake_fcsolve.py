@@ -7,6 +7,7 @@ solvers that misbehave. `solvers --json` lists them; `solve FILE --solver S
   sleepy    starts a child process (its pid goes to $FAKE_PID_FILE), then sleeps
   suicidal  kills itself with SIGSEGV
   mute      exits 0 and prints nothing
+  tired     as zero, but reports its own time limit (status "timeout")
   slowfirst as zero, but reports 1 s on its first call and 0.25 s afterwards
             (calls counted in $FAKE_COUNT_FILE)
 """
@@ -17,7 +18,7 @@ import subprocess
 import sys
 import time
 
-SOLVERS = ["zero", "sleepy", "suicidal", "mute", "slowfirst"]
+SOLVERS = ["zero", "sleepy", "suicidal", "mute", "slowfirst", "tired"]
 
 
 def option(args, name, default=None):
@@ -64,7 +65,8 @@ def main(args):
         with open(count_file, "w") as f:
             f.write(str(calls + 1))
         seconds = 1.0 if calls == 0 else 0.25
-    print(json.dumps(dict(solver=solver, status="converged", iterations=0, error=0.0,
+    status = "timeout" if solver == "tired" else "converged"
+    print(json.dumps(dict(solver=solver, status=status, iterations=0, error=0.0,
                           seconds=seconds, setup_seconds=0.0, solve_seconds=seconds, message="")))
     return 0
 

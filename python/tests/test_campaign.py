@@ -107,6 +107,9 @@ def test_timeout_kills_the_process_group(tmp_path, trivial, monkeypatch):
     (row,) = rows
     assert row["failure"] == "timeout" and row["status"] == "timeout" and row["error"] is None
     assert 0.9 <= row["wall_seconds"] < 10 and "killed after" in row["message"]
+    # a solver that stops itself at its time limit: a timeout too, not killed
+    _, (tired,), _ = bench([BUNDLED / "Rover1039.hdf5"], tmp_path / "t", solvers="tired")
+    assert tired["failure"] == "timeout" and tired["error"] > 1e-8 and not tired["message"]
     assert_gone(int(pid_file.read_text()))  # the sleeping grandchild went with its group
     logs = os.listdir(tmp_path / "c" / "logs")
     assert len(logs) == 1 and "sleepy" in logs[0]

@@ -174,7 +174,7 @@ def run_task(task):
             break
         seconds, wall = min(seconds, _solver_seconds(again, wall2)), min(wall, wall2)
     failure = classify(timed_out=timed_out, returncode=rc, report=report, error=error, tol=task.tol)
-    if failure == "timeout":
+    if timed_out:
         note = f"killed after {wall:.3g} s (limit {task.kill_after:g} s)"
     elif failure == "crash" and not note:
         if rc is not None and rc < 0:
@@ -182,7 +182,7 @@ def run_task(task):
         else:
             last = (err.strip().splitlines() or ["no output"])[-1]
             note = f"exit code {rc}: {last}"
-    if failure in ("crash", "timeout"):
+    if failure == "crash" or timed_out:
         os.makedirs(task.log_dir, exist_ok=True)
         with open(os.path.join(task.log_dir, log_name(task)), "w") as f:
             f.write(f"$ {' '.join(task.argv)}\n# {note}\n--- stdout\n{out}\n--- stderr\n{err}\n")
