@@ -143,7 +143,9 @@ def build_report(out_dir, report_dir=None):
     sections.append("<h2>Performance profiles (Dolan &amp; Moré 2002)</h2><p class='note'>"
                     "ρ<sub>s</sub>(τ): fraction of the problems that solver s solved within a "
                     "factor τ of the best solver on each problem; ρ(1) is how often s wins, the "
-                    "right end how often it solves at all. Dashed: peers.</p>"
+                    "right end how often it solves at all. Dashed: peers. An iteration is each "
+                    "solver's own unit (a Gauss-Seidel sweep, a Newton or interior-point step): "
+                    "compare iterations within a family, time across families.</p>"
                     + "".join(_img(p, "performance profile") for p in profiles))
     sections.append("<h2>Speed against accuracy</h2>" + _img(wp, "work-precision diagram")
                     + _img(scatter, "time against achieved error"))
