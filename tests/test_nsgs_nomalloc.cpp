@@ -54,6 +54,9 @@ TEST_CASE("nsgs sweeps do not allocate", "[nsgs][nomalloc]") {
     solve_without_allocation<DenseStorage<3>, E>(small, o, 1.1);
     solve_without_allocation<BlockSparseStorage<3>, P>(p, o, 1.0);
     solve_without_allocation<BlockSparseStorage<3>, PI>(p, o, 1.0);
+    solve_without_allocation<BlockSparseStorage<3>, local::AlartCurnierNewton<Coulomb3D>>(p, o, 1.0);
+    solve_without_allocation<BlockSparseStorage<3>, local::FischerBurmeisterNewton<Coulomb3D>>(p, o, 1.0);
+    solve_without_allocation<BlockSparseStorage<3>, local::Hybrid<Coulomb3D>>(p, o, 1.0);
   }
   E::Settings reference;  // the full enumeration (companion matrix) too
   reference.newton_first = false;

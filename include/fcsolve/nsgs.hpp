@@ -8,11 +8,15 @@
 //   if (nsgs.info().converged()) ...
 //
 // The third template argument picks the local (one-contact) solver:
-// local::Projection, local::ProjectionIterative, local::Enumerative, ...
+// local::Projection, local::ProjectionIterative, local::Enumerative,
+// local::AlartCurnierNewton, local::FischerBurmeisterNewton, local::Hybrid.
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
+#include <fcsolve/local/alart_curnier_newton.hpp>
 #include <fcsolve/local/enumerative.hpp>
+#include <fcsolve/local/fischer_burmeister_newton.hpp>
+#include <fcsolve/local/hybrid.hpp>
 #include <fcsolve/local/projection.hpp>
 #include <fcsolve/local/projection_iterative.hpp>
 #include <fcsolve/nsgs/nsgs_solver.hpp>
