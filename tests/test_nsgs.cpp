@@ -204,10 +204,12 @@ TEST_CASE("nsgs options: omega, orderings, freezing, error evaluation", "[nsgs]"
       CHECK(ra != rc);
     }
   }
-  SECTION("freezing re-checks frozen contacts before success") {
-    Solver s;
-    s.settings().freezing = 10;
-    check_converges(s);
+  SECTION("freezing (re-checks frozen contacts before success) and no freezing") {
+    for (int freezing : {0, 3, 10}) {
+      Solver s;
+      s.settings().freezing = freezing;
+      check_converges(s);
+    }
   }
   SECTION("full error every sweep or rarely") {
     for (int every : {1, 50}) {
@@ -306,7 +308,8 @@ TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs]
   std::set<std::string> names;
   for (const auto& e : registry::entries())
     if (e.family == "nsgs") names.insert(e.name);
-  for (const char* n : {"nsgs", "nsgs-proj", "nsgs-proj-iter", "nsgs-exact", "psor"})
+  for (const char* n : {"nsgs", "nsgs-proj", "nsgs-proj-iter", "nsgs-exact", "nsgs-ac", "nsgs-fb",
+                        "nsgs-hybrid", "psor"})
     CHECK(names.count(n) == 1);
 
   SECTION("every entry on a local problem, with its settings parsed") {

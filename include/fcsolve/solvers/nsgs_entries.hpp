@@ -4,7 +4,8 @@
 //
 // The storage is chosen at run time: DenseStorage up to
 // kDenseStorageMaxContacts contacts, BlockSparseStorage beyond; the cone by
-// dispatch_cone(d). That is 2 x 3 instantiations of Nsgs per local solver.
+// dispatch_cone(d). That is 2 x 2 instantiations of Nsgs per local solver
+// (3D, 2D), plus two shared by every entry for frictionless problems.
 #pragma once
 
 #include <fcsolve/nsgs.hpp>
@@ -30,7 +31,7 @@ inline std::vector<SettingSpec> common_settings(double omega) {
                       "reshuffle every sweep after this many sweeps without 1% progress (0: never)",
                       0, 1e9),
       integer_setting("error_every", 10, "full error at least every k sweeps", 1, 1e9),
-      integer_setting("freezing", 0,
+      integer_setting("freezing", 10,
                       "skip a contact for k sweeps once its local solution stops moving (0: off)",
                       0, 1e9),
   };
@@ -67,15 +68,25 @@ SolveOutcome run(const LocalProblemView& view, const SolveRequest& req, const Co
 
 /// NSGS with local solver Local<Cone>, the cone and the storage picked here.
 /// `configure(values, local_settings)` copies the local solver's knobs.
+/// Frictionless problems use the projection whatever the entry: with rho =
+/// 1 / W^aa it is the exact one-contact solution max(0, -q / W^aa), which
+/// every local solver computes, so one instantiation serves them all.
 template <template <class> class Local, class Configure>
 SolveOutcome solve_with(const LocalProblemView& view, const SolveRequest& req,
                         const Configure& configure) {
   return dispatch_cone(view.d, [&](auto cone) {
     using Cone = decltype(cone);
     constexpr int D = Cone::dim;
-    if (view.num_contacts() <= kDenseStorageMaxContacts)
-      return run<Nsgs<Cone, DenseStorage<D>, Local<Cone>>>(view, req, configure);
-    return run<Nsgs<Cone, BlockSparseStorage<D>, Local<Cone>>>(view, req, configure);
+    if constexpr (D == 1) {
+      const auto defaults = [](const SettingValues&, auto&) {};
+      if (view.num_contacts() <= kDenseStorageMaxContacts)
+        return run<Nsgs<Cone, DenseStorage<1>, local::Projection<Cone>>>(view, req, defaults);
+      return run<Nsgs<Cone, BlockSparseStorage<1>, local::Projection<Cone>>>(view, req, defaults);
+    } else {
+      if (view.num_contacts() <= kDenseStorageMaxContacts)
+        return run<Nsgs<Cone, DenseStorage<D>, Local<Cone>>>(view, req, configure);
+      return run<Nsgs<Cone, BlockSparseStorage<D>, Local<Cone>>>(view, req, configure);
+    }
   });
 }
 
@@ -108,6 +119,26 @@ inline const auto configure_enumerative = [](const SettingValues& v, auto& s) {
   s.newton_first = v.boolean("newton_first");
 };
 
+inline const auto configure_newton = [](const SettingValues& v, auto& s) {
+  s.tol = v.real("local_tol");
+  s.max_iter = static_cast<int>(v.integer("local_max_iter"));
+  const std::string& ls = v.choice("line_search");
+  s.search.line_search = ls == "armijo" ? LineSearch::Armijo
+                         : ls == "none" ? LineSearch::None
+                                        : LineSearch::GoldsteinPrice;
+};
+inline const auto configure_hybrid = [](const SettingValues& v, auto& s) {
+  configure_newton(v, s.newton);
+  s.projection.max_iter = static_cast<int>(v.integer("projection_max_iter"));
+};
+
+inline std::vector<SettingSpec> newton_settings() {
+  return {real_setting("local_tol", 1e-14, "local Newton tolerance on ||G||", 0, 1),
+          integer_setting("local_max_iter", 20, "local Newton iterations", 1, 1e6),
+          choice_setting("line_search", "goldstein-price", {"goldstein-price", "armijo", "none"},
+                         "line search of the local Newton")};
+}
+
 inline std::vector<SettingSpec> projection_settings() {
   return {real_setting("rho_scale", 1.0, "projection step rho = rho_scale / lambda_max(W^aa)", 1e-6,
                        1.99)};
@@ -134,6 +165,20 @@ inline void add_nsgs_solvers(std::vector<SolverEntry>& v) {
       {boolean_setting("newton_first", false,
                        "try Newton on the sliding direction before the full enumeration")},
       configure_enumerative));
+  v.push_back(make_entry<local::AlartCurnierNewton>(
+      "nsgs-ac", "nonsmooth Gauss-Seidel, local Alart-Curnier semismooth Newton",
+      newton_settings(), configure_newton));
+  v.push_back(make_entry<local::FischerBurmeisterNewton>(
+      "nsgs-fb", "nonsmooth Gauss-Seidel, local Fischer-Burmeister semismooth Newton",
+      newton_settings(), configure_newton));
+  {
+    std::vector<SettingSpec> hybrid = newton_settings();
+    hybrid.push_back(integer_setting("projection_max_iter", 200,
+                                     "iterations of the projection fallback", 1, 1e6));
+    v.push_back(make_entry<local::Hybrid>(
+        "nsgs-hybrid", "nonsmooth Gauss-Seidel, local Newton with a projection fallback",
+        std::move(hybrid), configure_hybrid));
+  }
   v.push_back(make_entry<local::Projection>(
       "psor", "projected successive over-relaxation (NSGS-projection with omega)",
       projection_settings(), configure_projection, 1.0));
