@@ -97,6 +97,26 @@ struct OneContact {
     }
   }
   static double largest_eigenvalue(const Mat& W) { return symmetric_eigenvalues(W)[dim - 1]; }
+  /// rho = (1 / W_NN, 1 / ||W_TT||_2, ...): the split spectral scaling of
+  /// the Newton formulations' rho (Acary, Bremond & Huber 2018), in closed
+  /// form (||W_TT||_2 of a 1 x 1 or 2 x 2 block). A zero entry gives 1.
+  static Vec split_rho(const Mat& W) {
+    const auto inverse = [](double x) { return x > 0 && std::isfinite(x) ? 1 / x : 1.0; };
+    Vec rho;
+    rho[0] = inverse(W(0, 0));
+    if constexpr (dim == 2) {
+      rho[1] = inverse(std::abs(W(1, 1)));
+    } else if constexpr (dim == 3) {
+      // ||T||_2^2 = largest eigenvalue of T^T T = (t + sqrt(t^2 - 4 det^2)) / 2,
+      // t = ||T||_F^2, det = det T
+      const SmallMatrix<2> T = W.template bottomRightCorner<2, 2>();
+      const double t = T.squaredNorm(), det = T.determinant();
+      const double l = 0.5 * (t + std::sqrt(std::max(t * t - 4 * det * det, 0.0)));
+      rho.template tail<2>().setConstant(inverse(std::sqrt(l)));
+    }
+    return rho;
+  }
+
   /// Default projection parameter rho = 1 / lambda_max(sym W): the step of a
   /// projected gradient that never overshoots; +inf-safe when W is zero.
   static double default_rho(const Mat& W) {

@@ -10,7 +10,7 @@
 // with t from the Armijo or Goldstein-Price line search on psi = 1/2 ||G||^2
 // (newton/line_search.hpp). rho = (rho_N, rho_T, ...) comes from the
 // diagonal block (rho_N = 1 / W_NN, rho_T = 1 / ||W_TT||_2, the split
-// spectral strategy of newton/rho_strategy.hpp). A singular J is shifted,
+// spectral strategy, OneContact::split_rho). A singular J is shifted,
 // J + delta I. Take-off (q_N >= 0) and stick (-W^-1 q ∈ K) are tested first
 // in closed form: exact, and what Newton would reach anyway.
 // Converged: ||G|| <= tol * max(||r||, rho_N ||q||).
@@ -18,7 +18,6 @@
 
 #include <fcsolve/local/one_contact.hpp>
 #include <fcsolve/newton/line_search.hpp>
-#include <fcsolve/newton/rho_strategy.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +63,7 @@ struct SemismoothNewton {
     d.W = W;
     d.W_inv = OneContact<Cone>::inverse_or_zero(W);
     d.mu = mu;
-    d.rho = contact_rho<dim>(RhoStrategy::SplitSpectralNorm, 1.0, W);
+    d.rho = OneContact<Cone>::split_rho(W);
     return d;
   }
 

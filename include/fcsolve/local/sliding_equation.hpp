@@ -20,8 +20,7 @@
 #pragma once
 
 #include <fcsolve/core/types.hpp>
-
-#include <Eigen/Eigenvalues>
+#include <fcsolve/local/polynomial_roots.hpp>
 
 #include <algorithm>
 #include <array>
@@ -80,38 +79,29 @@ struct SlidingEquation {
     return false;
   }
 
-  /// Every root direction: the real parts of the quartic's roots (companion
-  /// matrix eigenvalues) and th = pi, each polished by Newton. Returns how
-  /// many of `out` were written (at most 5, or 4 axes when f = 0).
+  /// Every root direction: the quartic's real roots (local/polynomial_roots.hpp)
+  /// and th = pi, each polished by Newton on f. Returns how many of `out`
+  /// were written (at most 5, or 4 axes when f = 0).
   int roots(std::array<Vec2, 5>& out, int polish_iter) const {
-    const std::array<double, 5> c = {a2 + A, 2 * (a1 - B), 4 * C - 2 * A, 2 * (a1 + B), A - a2};
-    double cmax = 0;
-    for (double x : c) cmax = std::max(cmax, std::abs(x));
+    Polynomial p;  // coefficients of tau^0 ... tau^4
+    p.c = {A - a2, 2 * (a1 + B), 4 * C - 2 * A, 2 * (a1 - B), a2 + A};
+    p.degree = 4;
     int n = 0;
     out[n++] = Vec2(-1, 0);  // th = pi
-    if (cmax == 0) {         // f = 0 everywhere: try the axes
-      out[n++] = Vec2(1, 0);
+    if (std::all_of(p.c.begin(), p.c.end(), [](double x) { return x == 0; })) {
+      out[n++] = Vec2(1, 0);  // f = 0 everywhere: try the axes
       out[n++] = Vec2(0, 1);
       out[n++] = Vec2(0, -1);
       return n;
     }
-    int lead = 0;  // vanishing leading coefficients: roots at infinity, th = pi
-    while (lead < 4 && std::abs(c[lead]) <= 1e-14 * cmax) ++lead;
-    const int degree = 4 - lead;
-    if (degree > 0) {
-      using Companion = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
-      Companion M = Companion::Zero(degree, degree);
-      for (int i = 1; i < degree; ++i) M(i, i - 1) = 1;
-      for (int i = 0; i < degree; ++i) M(i, degree - 1) = -c[4 - i] / c[lead];
-      Eigen::EigenSolver<Companion> eig(M, /*computeEigenvectors=*/false);
-      for (int i = 0; i < degree; ++i) {
-        const double tau = eig.eigenvalues()[i].real();
-        if (std::abs(tau) <= 1) {
-          out[n++] = Vec2(1 - tau * tau, 2 * tau) / (1 + tau * tau);
-        } else {  // same formula in 1 / tau, safe for huge tau
-          const double v = 1 / tau;
-          out[n++] = Vec2(v * v - 1, 2 * v) / (v * v + 1);
-        }
+    std::array<double, 4> tau;
+    const int count = real_roots(p, tau);
+    for (int i = 0; i < count; ++i) {
+      if (std::abs(tau[i]) <= 1) {
+        out[n++] = Vec2(1 - tau[i] * tau[i], 2 * tau[i]) / (1 + tau[i] * tau[i]);
+      } else {  // same formula in 1 / tau, safe for huge tau
+        const double v = 1 / tau[i];
+        out[n++] = Vec2(v * v - 1, 2 * v) / (v * v + 1);
       }
     }
     for (int k = 0; k < n; ++k) {

@@ -36,7 +36,7 @@ struct NsgsSettings : SolverSettings {
   /// When the best full error has not improved by 1% for this many sweeps,
   /// switch to ShuffledEachSweep: exact block Gauss-Seidel in a fixed order
   /// can fall into a cycle that a new order each sweep breaks. 0: never.
-  int stall_sweeps = 2000;
+  int stall_sweeps = 5000;
   /// Full FCLIB error at least every `error_every` sweeps; in between, a
   /// cheap test on ||r_{k+1} - r_k|| decides whether a full error is worth
   /// computing. Success is only ever declared on a full error.

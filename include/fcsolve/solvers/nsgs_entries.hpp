@@ -27,7 +27,7 @@ inline std::vector<SettingSpec> common_settings(double omega) {
                      "contact order: natural, shuffled once, reshuffled every sweep"),
       boolean_setting("shuffle", false, "same as --ordering shuffle"),
       integer_setting("seed", 0, "seed of the contact shuffles", 0, 4294967295.0),
-      integer_setting("stall_sweeps", 2000,
+      integer_setting("stall_sweeps", 5000,
                       "reshuffle every sweep after this many sweeps without 1% progress (0: never)",
                       0, 1e9),
       integer_setting("error_every", 10, "full error at least every k sweeps", 1, 1e9),
