@@ -51,10 +51,13 @@ def _nsgs_shuffled(sn, so):
     so.iparam[sn.SICONOS_FRICTION_3D_NSGS_SHUFFLE] = sn.SICONOS_FRICTION_3D_NSGS_SHUFFLE_TRUE_EACH_LOOP
 
 
-def _psor(sn, so, omega=0.9):
+def _psor(sn, so):
     _nsgs_full_error(sn, so)
     so.iparam[sn.SICONOS_FRICTION_3D_NSGS_RELAXATION] = sn.SICONOS_FRICTION_3D_NSGS_RELAXATION_TRUE
-    so.dparam[sn.SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE] = omega
+    so.dparam[sn.SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE] = OPTIONS["omega"]
+
+
+OPTIONS = {"omega": 1.0}  # set from the command line
 
 
 # name -> how to run it. "local": a fc3d solver id (global problems are
@@ -132,7 +135,9 @@ def main():
     ap.add_argument("--max-time", type=float, default=20.0)
     ap.add_argument("--max-iter", type=int, default=10**7)
     ap.add_argument("--out")
+    ap.add_argument("--omega", type=float, default=1.0, help="relaxation of PSOR")
     args = ap.parse_args()
+    OPTIONS["omega"] = args.omega
     result = dict(solver=args.solver, file=args.problem)
     try:
         import siconos.numerics as sn

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <random>
+#include <vector>
 #include <string>
 
 using namespace fcsolve;
@@ -176,6 +177,34 @@ TEST_CASE("enumerative reference finds every branch", "[local]") {
   REQUIRE(sol.count == 1);
   CHECK(sol.kind[0] == local::ContactCase::Slide);
   CHECK((sol.r[0] - Eigen::Vector3d(1, -0.5, 0)).norm() <= 1e-12);
+}
+
+TEST_CASE("real roots of polynomials up to degree 4", "[local]") {
+  const auto roots_of = [](std::array<double, 5> c, int degree) {
+    local::Polynomial p;
+    p.c = c;
+    p.degree = degree;
+    std::array<double, 4> r;
+    const int n = local::real_roots(p, r);
+    return std::vector<double>(r.begin(), r.begin() + n);
+  };
+  // (x - 1)(x - 2)(x + 3)(x - 0.5) = x^4 - 0.5 x^3 - 7 x^2 + 9.5 x - 3
+  auto r = roots_of({-3, 9.5, -7, -0.5, 1}, 4);
+  REQUIRE(r.size() == 4);
+  CHECK(r[0] == Approx(-3).epsilon(1e-14));
+  CHECK(r[1] == Approx(0.5).epsilon(1e-14));
+  CHECK(r[2] == Approx(1).epsilon(1e-14));
+  CHECK(r[3] == Approx(2).epsilon(1e-14));
+  // (x - 1)^2 (x + 2) = x^3 - 3 x + 2: the double root is found
+  r = roots_of({2, -3, 0, 1, 0}, 3);
+  REQUIRE(r.size() == 2);
+  CHECK(r[0] == Approx(-2).epsilon(1e-14));
+  CHECK(r[1] == Approx(1).epsilon(1e-7));
+  // x^2 + 1: none; a vanishing leading coefficient lowers the degree
+  CHECK(roots_of({1, 0, 1, 0, 0}, 2).empty());
+  r = roots_of({-2, 1, 0, 0, 1e-300}, 4);
+  REQUIRE(r.size() == 1);
+  CHECK(r[0] == Approx(2));
 }
 
 TEST_CASE("sliding equation: the quartic's roots are the zeros of f", "[local]") {

@@ -328,17 +328,21 @@ TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs]
   }
   SECTION("global problems by reduction, with v recovered") {
     for (const auto& f : fcsolve_test::fclib_files("global")) {
-      INFO(name_of(f));
+      const std::string name = name_of(f);
+      INFO(name);
       const GlobalProblem p = fclib::read_global(f);
-      if (p.num_contacts() > 100) continue;  // the big reductions belong to the benchmarks
+      // spheres-in-a-box converges slowly (6e-8 after 20 s; Siconos' NSGS
+      // stays above 1e-6): its check here is 1e-4
+      const bool slow = name.find("spheres-in-a-box") != std::string::npos;
       registry::SolveRequest req = registry::make_request(registry::find("nsgs"));
+      req.common.tol = slow ? 1e-4 : 1e-8;
       req.common.max_iter = 100000;
       const registry::SolveOutcome out = registry::solve(GlobalProblemView(p), "nsgs", req);
       const GlobalReduction<DefaultBackend> reduction(p, false);
       const GlobalErrorReport rep =
           global_error_report(p, reduction.free_velocity_norm(), out.r, out.v, out.lambda);
       CHECK(out.info.converged());
-      CHECK(rep.error <= 1e-8);
+      CHECK(rep.error <= req.common.tol);
     }
   }
 }
