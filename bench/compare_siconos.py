@@ -150,7 +150,7 @@ def main():
     timeout = args.max_time + args.margin
     rows = []
     siconos_done = {}
-    print("%-36s %-22s %-13s %9s %9s %3s | %9s %9s %3s | %7s" % (
+    print("%-36s %-22s %-13s %10s %9s %3s | %10s %9s %3s | %7s" % (
         "problem", "fcsolve", "siconos", "fc s", "fc err", "ok", "sic s", "sic err", "ok", "ratio"))
     with tempfile.TemporaryDirectory() as tmp:
         for path in files:
@@ -185,7 +185,7 @@ def main():
                     and sic["seconds"] > 0 else float("nan")
                 rows.append(dict(problem=name, fcsolve=label, siconos=sic_name, fc=fc, sic=sic,
                                  ratio=ratio))
-                print("%-36s %-22s %-13s %9.4f %9.2e %3s | %9.4f %9.2e %3s | %7.3f %s" % (
+                print("%-36s %-22s %-13s %10.6f %9.2e %3s | %10.6f %9.2e %3s | %7.3f %s" % (
                     name[:36], label[:22], sic_name, fc["seconds"], fc["error"],
                     "yes" if fc["solved"] else "no", sic["seconds"], sic["error"],
                     "yes" if sic["solved"] else "no", ratio,
@@ -200,6 +200,10 @@ def main():
         ratios = [r["ratio"] for r in sel if r["ratio"] == r["ratio"]]
         fc_only = [r["problem"] for r in sel if r["fc"]["solved"] and not r["sic"]["solved"]]
         sic_only = [r["problem"] for r in sel if r["sic"]["solved"] and not r["fc"]["solved"]]
+        if not with_siconos:
+            print("%-22s: fcsolve solved %d/%d (Siconos not run)"
+                  % (label, sum(r["fc"]["solved"] for r in sel), len(sel)))
+            continue
         print("%-22s vs %-13s: fcsolve solved %d/%d, Siconos %d/%d, both %d, median ratio %s"
               % (label, sic_name, sum(r["fc"]["solved"] for r in sel), len(sel),
                  sum(r["sic"]["solved"] for r in sel), len(sel), len(ratios),
