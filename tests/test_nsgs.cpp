@@ -86,7 +86,7 @@ bool slow_to_converge(const std::string& name) {
 
 TEST_CASE("nsgs solves the closed-form decoupled problem in one sweep", "[nsgs]") {
   const LocalProblem p = decoupled_problem();
-  Nsgs3<BlockSparseStorage<3>> nsgs;
+  Nsgs<Coulomb3D, BlockSparseStorage<3>> nsgs;  // the default local solver
   const Vector r = solve_with(nsgs, p);
   Vector expected(12);
   expected << 0, 0, 0, 1, -0.1, -0.1, 1, -0.5, 0, 1, 0, 0.5;
