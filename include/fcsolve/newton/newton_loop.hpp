@@ -18,6 +18,7 @@
 #include <fcsolve/newton/newton_step.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -52,8 +53,14 @@ class NewtonLoop {
   /// aside by run()); 0: no step.
   template <class Merit>
   double step_length(double psi, Merit&& merit) {
+    // the reference of the nonmonotone Armijo test: max of the last merits
+    recent_[recent_next_++ % recent_.size()] = psi;
+    const int memory = std::clamp(settings_.line_search_memory, 1, int(recent_.size()));
+    double reference = psi;
+    for (int k = 1; k < std::min(memory, recent_next_); ++k)
+      reference = std::max(reference, recent_[(recent_next_ - 1 - k) % recent_.size()]);
     FCSOLVE_NO_MALLOC_BEGIN();
-    const LineSearchResult ls = line_search(settings_, psi, merit);
+    const LineSearchResult ls = line_search(settings_, psi, merit, reference);
     const bool full = !ls.accepted && settings_.nonmonotone && std::isfinite(merit(1.0));
     FCSOLVE_NO_MALLOC_END();
     counters_.line_search_trials += ls.trials;
@@ -72,6 +79,7 @@ class NewtonLoop {
     info_.history.clear();
     info_.message.clear();
     counters_ = NewtonCounters();
+    recent_next_ = 0;
     double kappa = 1;  // adaptive rho factor
     int rho_retries = 0;
     self.set_rho_factor(kappa);
@@ -110,6 +118,7 @@ class NewtonLoop {
       if (moved && (settings_.stall_window <= 0 || since < settings_.stall_window)) continue;
       // stalled: restart from the best iterate, with another rho or the sweeps
       since = 0;
+      recent_next_ = 0;
       reference = best;
       self.restore_best();
       error = best;
@@ -139,6 +148,9 @@ class NewtonLoop {
   NewtonCounters counters_;
 
  private:
+  std::array<double, 16> recent_{};  // last merits (nonmonotone line search)
+  int recent_next_ = 0;
+
   /// Fallback sweeps until the error drops by resume_ratio; false if the
   /// derived form has no fallback.
   bool run_fallback(double& error, const Stopwatch& clock) {

@@ -27,6 +27,9 @@ struct NewtonSettings : SolverSettings {
   LineSearch line_search = LineSearch::GoldsteinPrice;
   double sigma = 1e-4;        ///< sufficient-decrease parameter (Armijo, Goldstein-Price)
   int max_line_search = 30;   ///< trial steps per iteration (halving)
+  /// Nonmonotone Armijo test against the largest of the last
+  /// `line_search_memory` merits (1: monotone; at most 16).
+  int line_search_memory = 10;
   double min_step = 1e-10;    ///< a step length below this is a line-search failure
   /// After a failed line search take the full step anyway (Siconos' NSN
   /// does); the best iterate is kept and returned if the solve fails.
