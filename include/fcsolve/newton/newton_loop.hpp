@@ -1,7 +1,9 @@
 // The outer loop shared by the reduced and the global Newton solvers: stop
 // tests, history and callback, the best iterate, stall detection and what
 // follows a stall (adaptive rho, hybrid fallback sweeps, or Status::Stalled).
-// CRTP: Derived provides
+// Derived's error(), fallback_sweep() and the steps outside the
+// factorisation allocate nothing (FCSOLVE_NO_MALLOC_BEGIN/END, proved by
+// tests/test_newton_nomalloc.cpp). CRTP: Derived provides
 //   double error()          FCLIB error of the current iterate
 //   bool newton_step()      one globalised step (false: no step possible)
 //   void save_best(), restore_best()
@@ -59,10 +61,8 @@ class NewtonLoop {
     double reference = psi;
     for (int k = 1; k < std::min(memory, recent_next_); ++k)
       reference = std::max(reference, recent_[(recent_next_ - 1 - k) % recent_.size()]);
-    FCSOLVE_NO_MALLOC_BEGIN();
     const LineSearchResult ls = line_search(settings_, psi, merit, reference);
     const bool full = !ls.accepted && settings_.nonmonotone && std::isfinite(merit(1.0));
-    FCSOLVE_NO_MALLOC_END();
     counters_.line_search_trials += ls.trials;
     if (!ls.accepted && !full) return 0;
     if (full) ++counters_.nonmonotone_steps;
@@ -111,7 +111,9 @@ class NewtonLoop {
       ++info_.iterations;
       const bool moved = self.newton_step();
       if (moved) {
+        FCSOLVE_NO_MALLOC_BEGIN();
         error = self.error();
+        FCSOLVE_NO_MALLOC_END();
         track(error);
         if (!record(error, clock)) break;
       }
@@ -160,10 +162,13 @@ class NewtonLoop {
     for (int s = 0; s < settings_.fallback_sweeps; ++s) {
       if (error <= settings_.tol || error <= target) break;
       if (info_.iterations >= settings_.max_iter || clock.seconds() > settings_.max_time) break;
-      if (!self.fallback_sweep()) return false;
+      FCSOLVE_NO_MALLOC_BEGIN();
+      const bool swept = self.fallback_sweep();
+      if (swept) error = self.error();
+      FCSOLVE_NO_MALLOC_END();
+      if (!swept) return false;
       ++info_.iterations;
       ++counters_.sweeps;
-      error = self.error();
       if (!record(error, clock)) break;
     }
     return true;
