@@ -361,6 +361,18 @@ TEST_CASE("Newton catalogue entries solve through the registry", "[newton][catal
     CHECK(out.v.size() == global.num_dofs());
     CHECK_THROWS_AS(registry::solve(local, e, req), UsageError);  // global-only entry
   }
+  SECTION("bilateral constraints: the global entries go through the reduction") {
+    GlobalProblem g = fclib::read_global(fcsolve_test::bundled("GFC3D_Example1.hdf5"));
+    g.G = SparseMatrix(g.num_dofs(), 1);
+    g.G.insert(1, 0) = 1;  // v_1 = 0
+    g.G.makeCompressed();
+    g.b = Vector::Zero(1);
+    const auto& e = registry::find("nsn-ac-global");
+    const auto out = registry::solve(GlobalProblemView(g), e, registry::make_request(e));
+    CHECK(out.info.converged());
+    CHECK(std::abs(out.v[1]) <= 1e-12);
+    CHECK(out.lambda.size() == 1);
+  }
   registry::SolveRequest req = registry::make_request(registry::find("nsn-ac"));
   CHECK_THROWS_AS(req.settings.set_text("rho_strategy", "magic"), UsageError);
 }
