@@ -20,7 +20,7 @@ enum class RhoStrategy {
   Constant,           ///< rho = settings.rho for every component
   SpectralNorm,       ///< rho = settings.rho / ||W^aa||_2
   SplitSpectralNorm,  ///< rho_N = settings.rho / W^aa_NN, rho_T = settings.rho / ||W^aa_TT||_2
-  Adaptive,           ///< split spectral, rescaled by 10^{+-1} when the line search fails
+  Adaptive,           ///< split spectral, times 10 then times 1/10 when Newton stalls (restart from the best iterate)
 };
 
 struct NewtonSettings : SolverSettings {
