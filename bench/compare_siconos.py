@@ -47,7 +47,10 @@ PAIRS = {
         ("nsgs-proj", [], "NSGS"),
         ("nsgs", ["--ordering", "reshuffle"], "NSGS-SHUFFLE"),
     ],
-    "newton": [("nsn-ac", [], "NSN-AC"), ("nsn-fb", [], "NSN-FB"), ("nsn-nm", [], "NSN-NM")],
+    "newton": [("nsn-ac", [], "NSN-AC"), ("nsn-fb", [], "NSN-FB"), ("nsn-nm", [], "NSN-NM"),
+               ("nsn-jm", [], "NSN-JM"), ("nsn-ac-hybrid", [], "NSN-AC")],
+    # FC/I natively (global files only): fcsolve in (v, r) vs Siconos gfc3d NSN-AC
+    "newton-global": [("nsn-ac-global", [], "GNSN-AC"), ("nsn-fb-global", [], "GNSN-AC")],
 }
 
 

@@ -60,6 +60,11 @@ def _psor(sn, so):
 OPTIONS = {"omega": 1.0}  # set from the command line
 
 
+def _nsn_jean_moreau(sn, so):
+    so.iparam[sn.SICONOS_FRICTION_3D_NSN_FORMULATION] = \
+        sn.SICONOS_FRICTION_3D_NSN_FORMULATION_JEANMOREAU_GENERATED
+
+
 # name -> how to run it. "local": a fc3d solver id (global problems are
 # reduced first); "global": a gfc3d solver id run on the global problem.
 # "configure" adjusts the SolverOptions; "chunked": iterative, may be run in
@@ -71,6 +76,8 @@ SOLVERS = {
     "NSN-AC": dict(local="SICONOS_FRICTION_3D_NSN_AC", chunked=True),
     "NSN-FB": dict(local="SICONOS_FRICTION_3D_NSN_FB", chunked=True),
     "NSN-NM": dict(local="SICONOS_FRICTION_3D_NSN_NM", chunked=True),
+    "NSN-JM": dict(local="SICONOS_FRICTION_3D_NSN_AC", configure=_nsn_jean_moreau, chunked=True),
+    "GNSN-AC": dict(global_="SICONOS_GLOBAL_FRICTION_3D_NSN_AC", chunked=False),
     "IPM": dict(global_="SICONOS_GLOBAL_FRICTION_3D_IPM", chunked=False),
 }
 
@@ -156,6 +163,10 @@ def main():
     budget = Budget(args.max_time, args.max_iter)
     m, nc = P["mu"].size * 3, P["mu"].size
     v = None
+    if P["kind"] == "local" and "local" not in spec:
+        result.update(status="unsupported", message=f"{args.solver} solves global problems only")
+        print(json.dumps(result))
+        return 2
     if P["kind"] == "local":
         fcp = sn.FrictionContactProblem(3, _int64_csc(P["W"]), P["q"].copy(), P["mu"].copy())
         r, u, status, residual = run_local(sn, spec, fcp, m, args.tol, budget, meter, lambda r: None)

@@ -94,9 +94,10 @@ struct SemismoothNewton {
       }
       const Vec step = newton_direction(Mat(A * d.W + B), G);
       const double psi0 = 0.5 * norm_g * norm_g;
-      const LineSearchResult ls = line_search(s.search, psi0, [&](double t) {
-        return 0.5 * residual(d, q, Vec(r + t * step)).squaredNorm();
-      });
+      const LineSearchResult ls = line_search(
+          s.search, psi0,
+          [&](double t) { return 0.5 * residual(d, q, Vec(r + t * step)).squaredNorm(); },
+          psi0);  // monotone test (reference = psi0): few iterations, no merit history
       if (ls.accepted) {
         r += ls.step * step;
       } else if (full_steps++ < s.max_full_steps) {

@@ -25,7 +25,6 @@ class GlobalJacobian {
 
   void compute(const SparseMap& M, const SparseMap& H) {
     const Index n = M.rows(), m = H.cols(), nc = m / D;
-    n_ = n;
     // (contact, dof, component, H value), grouped by (contact, dof)
     std::vector<std::tuple<Index, Index, int, double>> entries;
     for (Index c = 0; c < m; ++c)
@@ -96,7 +95,6 @@ class GlobalJacobian {
   Index nonzeros() const { return pattern_.nonZeros(); }
 
  private:
-  Index n_ = 0;
   std::vector<Index> contact_, dof_;  // (contact, dof) pairs with H(dof, contact) != 0
   std::vector<SmallVector<D>, Eigen::aligned_allocator<SmallVector<D>>> h_;
   SparseMatrix pattern_;

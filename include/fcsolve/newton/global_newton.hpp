@@ -142,6 +142,8 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
   }
   bool fallback_sweep() { return false; }
 
+  /// One globalised Newton step; false when no step could be taken. Only
+  /// the factorisation (in system_.solve) may allocate.
   bool newton_step() {
     const Index n = problem_->num_dofs();
     FCSOLVE_NO_MALLOC_BEGIN();
@@ -152,15 +154,18 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
     if (!system_.solve(F_, dz_, this->shift(psi_, reference_norm_),
                        settings_.singular_regularisation, counters_))
       return false;
+    FCSOLVE_NO_MALLOC_BEGIN();
     Hdv_.noalias() = problem_->H.transpose() * dz_.head(n);
     const auto dr = dz_.tail(dz_.size() - n);
     const double t = this->step_length(psi_, [&](double s) { return residual_.trial(r_, dr, u_, Hdv_, s); });
-    if (t == 0) return false;
-    v_ += t * dz_.head(n);
-    r_ += t * dr;
-    update_velocity();
-    refresh();
-    return true;
+    if (t > 0) {
+      v_ += t * dz_.head(n);
+      r_ += t * dr;
+      update_velocity();
+      refresh();
+    }
+    FCSOLVE_NO_MALLOC_END();
+    return t > 0;
   }
 
   void update_velocity() {

@@ -21,9 +21,12 @@ struct LineSearchResult {
   int trials = 0;
 };
 
-/// `merit(t)` returns psi(t); it is called at most settings.max_line_search times.
+/// `merit(t)` returns psi(t); it is called at most settings.max_line_search
+/// times. `reference` >= psi0 relaxes the Armijo test to psi(t) <= reference
+/// - 2 sigma t psi0 (nonmonotone: the largest of the last merits, Grippo,
+/// Lampariello & Lucidi, SIAM J. Numer. Anal. 23, 1986).
 template <class Merit>
-LineSearchResult line_search(const NewtonSettings& s, double psi0, Merit&& merit) {
+LineSearchResult line_search(const NewtonSettings& s, double psi0, Merit&& merit, double reference) {
   LineSearchResult out;
   double t = 1, lo = 0, hi = std::numeric_limits<double>::infinity();
   for (int k = 0; k < std::max(1, s.max_line_search); ++k) {
@@ -33,7 +36,7 @@ LineSearchResult line_search(const NewtonSettings& s, double psi0, Merit&& merit
       out = {std::isfinite(psi), t, psi, 1};
       return out;
     }
-    const bool armijo = std::isfinite(psi) && psi <= (1 - 2 * s.sigma * t) * psi0;
+    const bool armijo = std::isfinite(psi) && psi <= reference - 2 * s.sigma * t * psi0;
     if (!armijo) {
       hi = t;
     } else if (s.line_search == LineSearch::GoldsteinPrice && t < 1 &&

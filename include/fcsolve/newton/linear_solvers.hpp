@@ -31,8 +31,7 @@ class SparseNewtonLinearSolver {
 
   bool factorize(const SparseMatrix& J) {
     if (!analysed_) {
-      lu_.analyzePattern(J);
-      if (lu_.info() != Eigen::Success) return false;
+      lu_.analyzePattern(J);  // (Eigen's SparseLU sets no info() here: only factorize() reports)
       analysed_ = true;
     }
     lu_.factorize(J);

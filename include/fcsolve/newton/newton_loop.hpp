@@ -1,7 +1,9 @@
 // The outer loop shared by the reduced and the global Newton solvers: stop
 // tests, history and callback, the best iterate, stall detection and what
 // follows a stall (adaptive rho, hybrid fallback sweeps, or Status::Stalled).
-// CRTP: Derived provides
+// Derived's error(), fallback_sweep() and the steps outside the
+// factorisation allocate nothing (FCSOLVE_NO_MALLOC_BEGIN/END, proved by
+// tests/test_newton_nomalloc.cpp). CRTP: Derived provides
 //   double error()          FCLIB error of the current iterate
 //   bool newton_step()      one globalised step (false: no step possible)
 //   void save_best(), restore_best()
@@ -18,6 +20,7 @@
 #include <fcsolve/newton/newton_step.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -52,10 +55,14 @@ class NewtonLoop {
   /// aside by run()); 0: no step.
   template <class Merit>
   double step_length(double psi, Merit&& merit) {
-    FCSOLVE_NO_MALLOC_BEGIN();
-    const LineSearchResult ls = line_search(settings_, psi, merit);
+    // the reference of the nonmonotone Armijo test: max of the last merits
+    recent_[recent_next_++ % recent_.size()] = psi;
+    const int memory = std::clamp(settings_.line_search_memory, 1, int(recent_.size()));
+    double reference = psi;
+    for (int k = 1; k < std::min(memory, recent_next_); ++k)
+      reference = std::max(reference, recent_[(recent_next_ - 1 - k) % recent_.size()]);
+    const LineSearchResult ls = line_search(settings_, psi, merit, reference);
     const bool full = !ls.accepted && settings_.nonmonotone && std::isfinite(merit(1.0));
-    FCSOLVE_NO_MALLOC_END();
     counters_.line_search_trials += ls.trials;
     if (!ls.accepted && !full) return 0;
     if (full) ++counters_.nonmonotone_steps;
@@ -72,6 +79,7 @@ class NewtonLoop {
     info_.history.clear();
     info_.message.clear();
     counters_ = NewtonCounters();
+    recent_next_ = 0;
     double kappa = 1;  // adaptive rho factor
     int rho_retries = 0;
     self.set_rho_factor(kappa);
@@ -103,13 +111,16 @@ class NewtonLoop {
       ++info_.iterations;
       const bool moved = self.newton_step();
       if (moved) {
+        FCSOLVE_NO_MALLOC_BEGIN();
         error = self.error();
+        FCSOLVE_NO_MALLOC_END();
         track(error);
         if (!record(error, clock)) break;
       }
       if (moved && (settings_.stall_window <= 0 || since < settings_.stall_window)) continue;
       // stalled: restart from the best iterate, with another rho or the sweeps
       since = 0;
+      recent_next_ = 0;
       reference = best;
       self.restore_best();
       error = best;
@@ -139,6 +150,9 @@ class NewtonLoop {
   NewtonCounters counters_;
 
  private:
+  std::array<double, 16> recent_{};  // last merits (nonmonotone line search)
+  int recent_next_ = 0;
+
   /// Fallback sweeps until the error drops by resume_ratio; false if the
   /// derived form has no fallback.
   bool run_fallback(double& error, const Stopwatch& clock) {
@@ -148,10 +162,13 @@ class NewtonLoop {
     for (int s = 0; s < settings_.fallback_sweeps; ++s) {
       if (error <= settings_.tol || error <= target) break;
       if (info_.iterations >= settings_.max_iter || clock.seconds() > settings_.max_time) break;
-      if (!self.fallback_sweep()) return false;
+      FCSOLVE_NO_MALLOC_BEGIN();
+      const bool swept = self.fallback_sweep();
+      if (swept) error = self.error();
+      FCSOLVE_NO_MALLOC_END();
+      if (!swept) return false;
       ++info_.iterations;
       ++counters_.sweeps;
-      error = self.error();
       if (!record(error, clock)) break;
     }
     return true;

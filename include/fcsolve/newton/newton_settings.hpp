@@ -20,13 +20,16 @@ enum class RhoStrategy {
   Constant,           ///< rho = settings.rho for every component
   SpectralNorm,       ///< rho = settings.rho / ||W^aa||_2
   SplitSpectralNorm,  ///< rho_N = settings.rho / W^aa_NN, rho_T = settings.rho / ||W^aa_TT||_2
-  Adaptive,           ///< split spectral, rescaled by 10^{+-1} when the line search fails
+  Adaptive,           ///< split spectral, times 10 then times 1/10 when Newton stalls (restart from the best iterate)
 };
 
 struct NewtonSettings : SolverSettings {
   LineSearch line_search = LineSearch::GoldsteinPrice;
   double sigma = 1e-4;        ///< sufficient-decrease parameter (Armijo, Goldstein-Price)
   int max_line_search = 30;   ///< trial steps per iteration (halving)
+  /// Nonmonotone Armijo test against the largest of the last
+  /// `line_search_memory` merits (1: monotone; at most 16).
+  int line_search_memory = 10;
   double min_step = 1e-10;    ///< a step length below this is a line-search failure
   /// After a failed line search take the full step anyway (Siconos' NSN
   /// does); the best iterate is kept and returned if the solve fails.

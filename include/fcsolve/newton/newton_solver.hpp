@@ -110,7 +110,8 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
     return true;
   }
 
-  /// One globalised Newton step; false when no step could be taken.
+  /// One globalised Newton step; false when no step could be taken. Only
+  /// the factorisation (in system_.solve) may allocate.
   bool newton_step() {
     FCSOLVE_NO_MALLOC_BEGIN();
     jacobian_.assemble(residual_.A(), residual_.B(), system_.matrix());
@@ -118,13 +119,16 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
     if (!system_.solve(residual_.G(), dr_, this->shift(psi_, reference_norm_),
                        settings_.singular_regularisation, counters_))
       return false;
+    FCSOLVE_NO_MALLOC_BEGIN();
     W_.multiply(dr_, Wd_);
     const double t = this->step_length(psi_, [&](double s) { return residual_.trial(r_, dr_, u_, Wd_, s); });
-    if (t == 0) return false;
-    r_ += t * dr_;
-    update_velocity();
-    refresh();
-    return true;
+    if (t > 0) {
+      r_ += t * dr_;
+      update_velocity();
+      refresh();
+    }
+    FCSOLVE_NO_MALLOC_END();
+    return t > 0;
   }
 
   void update_velocity() {

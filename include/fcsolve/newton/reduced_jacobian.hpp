@@ -36,7 +36,6 @@ class ReducedJacobian {
   /// Reads W's blocks and fixes the pattern of J.
   void compute(const SparseMap& W) {
     const Index nb = W.cols() / D;
-    num_blocks_ = nb;
     // block (a, b) keys, sorted by block column then block row, plus the diagonal
     std::vector<std::pair<Index, Index>> keys;  // (b, a)
     for (Index j = 0; j < W.cols(); ++j)
@@ -121,7 +120,6 @@ class ReducedJacobian {
     return std::lower_bound(row_.begin() + first, row_.begin() + last, a) - row_.begin();
   }
 
-  Index num_blocks_ = 0;
   std::vector<Index> row_, col_;  // block coordinates, sorted by (col, row)
   BlockList w_;                   // W^{ab}
   SparseMatrix pattern_;

@@ -6,6 +6,7 @@
 
 #include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
+#include <fcsolve/solvers/newton_entries.hpp>
 #include <fcsolve/solvers/vi_entries.hpp>
 
 namespace fcsolve {
@@ -17,6 +18,7 @@ inline const std::vector<SolverEntry>& entries() {
     // Each solver family appends its entries here.
     add_nsgs_solvers(v);
     add_vi_solvers(v);
+    add_newton_solvers(v);
     return v;
   }();
   return all;

@@ -1,0 +1,61 @@
+// Proves that the Newton iterations allocate nothing outside the
+// factorisation of the Newton matrix: this file is compiled with
+// EIGEN_RUNTIME_NO_MALLOC and an eigen_assert that throws, so any Eigen heap
+// allocation between FCSOLVE_NO_MALLOC_BEGIN/END (Jacobian assembly, line
+// search, velocity and G updates, error, fallback sweeps) fails the test, in
+// release builds too.
+#include <stdexcept>
+
+#define eigen_assert(x) \
+  do {                  \
+    if (!(x)) throw std::logic_error("eigen_assert failed: " #x); \
+  } while (false)
+
+#include "test_support.hpp"
+
+#include <fcsolve/newton.hpp>
+
+#include <catch2/catch.hpp>
+
+using namespace fcsolve;
+
+TEST_CASE("Newton iterations allocate nothing outside the factorisation", "[newton][nomalloc]") {
+  const LocalProblem boxes = fclib::read_local(fcsolve_test::bundled("BoxesStack1-i100000-32.hdf5"));
+  const LocalProblem rover = fclib::read_local(fcsolve_test::bundled("Rover1039.hdf5"));
+  Vector r, u;
+  SECTION("reduced form, sparse storage, AC and the hybrid's Gauss-Seidel sweeps") {
+    Newton<AlartCurnierFunction, Coulomb3D, SparseStorage<3>> nsn;
+    nsn.compute(boxes);
+    r = Vector::Zero(boxes.size());
+    u.resize(boxes.size());
+    CHECK_NOTHROW(nsn.solve(r, u));
+    CHECK(nsn.info().converged());
+    // a crippled Newton stalls at once, so the sweeps run
+    nsn.settings().hybrid = true;
+    nsn.settings().stall_window = 2;
+    nsn.settings().levenberg_marquardt = 0;
+    nsn.settings().line_search_memory = 1;
+    nsn.settings().nonmonotone = false;
+    nsn.settings().max_iter = 200;
+    r.setZero();
+    CHECK_NOTHROW(nsn.solve(r, u));
+    CHECK(nsn.counters().sweeps > 0);
+  }
+  SECTION("reduced form, dense storage, Fischer-Burmeister") {
+    Newton<FischerBurmeisterFunction, Coulomb3D, DenseStorage<3>> nsn;
+    nsn.compute(rover);
+    r = Vector::Zero(rover.size());
+    u.resize(rover.size());
+    CHECK_NOTHROW(nsn.solve(r, u));
+    CHECK(nsn.info().converged());
+  }
+  SECTION("global form") {
+    const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("Box_Stacks-i0035-31-0.hdf5"));
+    GlobalNewton<NaturalMapFunction, Coulomb3D> nsn;
+    nsn.compute(g);
+    r = Vector::Zero(g.size());
+    Vector v(g.num_dofs());
+    CHECK_NOTHROW(nsn.solve(r, v));
+    CHECK(nsn.info().converged());
+  }
+}
