@@ -326,6 +326,18 @@ TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs]
       CHECK(local_error(p, out.r) <= 1e-7);
     }
   }
+  SECTION("2D and frictionless problems through every entry") {
+    const LocalProblem p2 = random_problem(2, 12, 0.4, 3), p1 = random_problem(1, 20, 0.0, 4);
+    for (const auto& name : names)
+      for (const LocalProblem* p : {&p2, &p1}) {
+        INFO(name << ", d = " << p->d);
+        registry::SolveRequest req = registry::make_request(registry::find(name));
+        req.common.max_time = 20;
+        const registry::SolveOutcome out = registry::solve(LocalProblemView(*p), name, req);
+        CHECK(out.info.converged());
+        CHECK(local_error(*p, out.r) <= 1e-8);
+      }
+  }
   SECTION("global problems by reduction, with v recovered") {
     for (const auto& f : fcsolve_test::fclib_files("global")) {
       const std::string name = name_of(f);
