@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fcsolve/solvers/registry.hpp>
+#include <fcsolve/solvers/ipm_entries.hpp>
 #include <fcsolve/solvers/vi_entries.hpp>
 
 namespace fcsolve {
@@ -15,6 +16,7 @@ inline const std::vector<SolverEntry>& entries() {
     std::vector<SolverEntry> v;
     // Each solver family appends its entries here.
     add_vi_solvers(v);
+    add_ipm_solvers(v);
     return v;
   }();
   return all;
