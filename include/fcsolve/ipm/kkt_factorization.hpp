@@ -39,12 +39,16 @@ template <class Backend>
 struct KktSolvers {
   using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
   using Lu = typename Backend::GeneralSolver;
+  static void quiet(Ldlt&) {}
 };
 #ifdef FCSOLVE_WITH_CHOLMOD
 template <>
 struct KktSolvers<SuiteSparseBackend> {
   using Ldlt = Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower>;
   using Lu = SuiteSparseBackend::GeneralSolver;
+  /// A failed factorisation is an expected event here (the caller then
+  /// regularises): keep CHOLMOD from printing it.
+  static void quiet(Ldlt& s) { s.cholmod().print = 0; }
 };
 #endif
 
@@ -79,7 +83,10 @@ class SparseKktFactorization {
   /// Numerical factorisation of the current values (symbolic analysis once).
   bool factorize() {
     if (symmetric_) {
-      if (!sym_) sym_ = std::make_unique<typename KktSolvers<Backend>::Ldlt>();
+      if (!sym_) {
+        sym_ = std::make_unique<typename KktSolvers<Backend>::Ldlt>();
+        KktSolvers<Backend>::quiet(*sym_);
+      }
       if (!analysed_) sym_->analyzePattern(K_);
       analysed_ = true;
       sym_->factorize(K_);
