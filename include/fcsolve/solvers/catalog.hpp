@@ -4,6 +4,7 @@
 // programs that need run-time selection (CLI, Python, benchmarks) include it.
 #pragma once
 
+#include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
 #include <fcsolve/solvers/ipm_entries.hpp>
 #include <fcsolve/solvers/vi_entries.hpp>
@@ -15,6 +16,7 @@ inline const std::vector<SolverEntry>& entries() {
   static const std::vector<SolverEntry> all = [] {
     std::vector<SolverEntry> v;
     // Each solver family appends its entries here.
+    add_nsgs_solvers(v);
     add_vi_solvers(v);
     add_ipm_solvers(v);
     return v;

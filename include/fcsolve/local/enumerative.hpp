@@ -1,0 +1,187 @@
+// Local solver (e): the exact one-contact solution, by enumeration of the
+// three branches of Coulomb's law (the EXACT local solver of Acary, Bremond &
+// Huber 2018, sec. 4.3):
+//
+//   take-off  r = 0                     a solution iff q_N >= 0
+//   stick     r = -W^-1 q, u = 0        a solution iff r ∈ K
+//   slide     u_N = 0, r = r_N (1, -mu t), t = u_T / ||u_T||
+//
+// 3D sliding: the roots of one equation in the direction t
+// (local/sliding_equation.hpp, a quartic). 2D: t = +-1, two closed-form
+// candidates. Frictionless: r = max(0, -q / W). mu = 0: r = (max(0, -q_N / W_NN), 0).
+//
+// A candidate counts as a solution only if its natural-map residual
+// ||r - P_K(r - (u + g(u)))|| is at rounding level: the residual is the
+// ground truth, so no branch test needs a tolerance of its own.
+//
+// Two modes. Reference (newton_first = false): enumerate every solution and
+// return the one closest to the warm start; this validates the other local
+// solvers (several solutions exist for large mu or unsymmetric W). Fast
+// (newton_first = true, the default): take-off, then stick, then Newton on
+// the sliding direction from the warm start's direction; the companion
+// matrix (a 4 x 4 eigenvalue problem) only when that Newton fails.
+#pragma once
+
+#include <fcsolve/local/one_contact.hpp>
+#include <fcsolve/local/sliding_equation.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace fcsolve {
+namespace local {
+
+template <class Cone_>
+struct Enumerative {
+  using Cone = Cone_;
+  static constexpr int dim = Cone::dim;
+  using Vec = typename Cone::Vec;
+  using Mat = SmallMatrix<dim>;
+  static constexpr const char* name = "enumerative";
+  static constexpr int kMaxSolutions = 8;
+
+  struct Settings {
+    bool newton_first = true;  ///< fast mode (see the header comment)
+    double tol = 1e-9;         ///< solution iff ||F_nat|| <= tol * scale
+    int newton_iter = 30;      ///< Newton steps on the sliding direction
+  };
+  struct Data {
+    Mat W, W_inv;
+    double W_norm = 0;  ///< Frobenius norm, the scale of the residual test
+    bool invertible = false;
+    double mu = 0;
+  };
+  /// Every solution found, without duplicates.
+  struct Solutions {
+    std::array<Vec, kMaxSolutions> r;
+    std::array<ContactCase, kMaxSolutions> kind;
+    int count = 0;
+  };
+
+  static Data prepare(const Mat& W, double mu, const Settings&) {
+    Data d;
+    d.W = W;
+    d.W_norm = W.norm();
+    d.mu = mu;
+    d.W_inv = OneContact<Cone>::inverse_or_zero(W);
+    d.invertible = !d.W_inv.isZero(0);
+    return d;
+  }
+
+  /// True if r solves the one-contact problem to rounding level.
+  static bool is_solution(const Data& d, const Vec& q, const Vec& r, const Settings& s) {
+    if (!r.allFinite()) return false;
+    const double scale = std::max({q.norm(), d.W_norm * r.norm(), 1e-300});
+    return OneContact<Cone>::residual(d.W, q, d.mu, r) <= s.tol * scale;
+  }
+
+  /// Every solution of the three branches.
+  static Solutions enumerate(const Data& d, const Vec& q, const Settings& s) {
+    Solutions out;
+    const auto consider = [&](const Vec& r, ContactCase kind) {
+      if (out.count == kMaxSolutions || !is_solution(d, q, r, s)) return;
+      for (int k = 0; k < out.count; ++k)
+        if ((out.r[k] - r).norm() <= 1e-8 * std::max(r.norm(), 1e-300)) return;
+      out.r[out.count] = r;
+      out.kind[out.count] = kind;
+      ++out.count;
+    };
+    consider(Vec::Zero(), ContactCase::TakeOff);
+    if (d.invertible) consider(Vec(-d.W_inv * q), ContactCase::Stick);
+    if constexpr (dim == 2) {
+      if (d.mu == 0) {
+        consider(normal_only(d, q), ContactCase::Slide);
+      } else {
+        for (const double t : {1.0, -1.0}) {
+          const double rn = -q[0] / (d.W(0, 0) - d.mu * d.W(0, 1) * t);
+          consider(Vec(rn, -d.mu * rn * t), ContactCase::Slide);
+        }
+      }
+    } else if constexpr (dim == 3) {
+      if (d.mu == 0) {
+        consider(normal_only(d, q), ContactCase::Slide);
+      } else {
+        std::array<SlidingEquation::Vec2, 5> t;
+        const SlidingEquation f(d.W, q, d.mu);
+        const int n = f.roots(t, s.newton_iter);
+        for (int k = 0; k < n; ++k)
+          consider(SlidingEquation::reaction(d.W, q, d.mu, t[k]), ContactCase::Slide);
+      }
+    }
+    return out;
+  }
+
+  static LocalResult solve(const Data& d, const Vec& q, Vec& r, const Settings& s) {
+    LocalResult res;
+    res.iterations = 1;
+    if (s.newton_first && fast_solve(d, q, r, s, res)) return res;
+    const Solutions sol = enumerate(d, q, s);
+    if (sol.count == 0) return res;  // keep the warm start, converged = false
+    int best = 0;
+    for (int k = 1; k < sol.count; ++k)
+      if ((sol.r[k] - r).norm() < (sol.r[best] - r).norm()) best = k;
+    r = sol.r[best];
+    res.converged = true;
+    res.kind = sol.kind[best];
+    return res;
+  }
+
+ private:
+  /// r = (max(0, -q_N / W_NN), 0): the solution family when mu = 0.
+  static Vec normal_only(const Data& d, const Vec& q) {
+    Vec r = Vec::Zero();
+    if (d.W(0, 0) > 0) r[0] = std::max(0.0, -q[0] / d.W(0, 0));
+    return r;
+  }
+
+  /// Take-off, stick, then Newton on the sliding direction; true if r now
+  /// holds a verified solution.
+  static bool fast_solve(const Data& d, const Vec& q, Vec& r, const Settings& s,
+                         LocalResult& res) {
+    res.converged = true;
+    if (OneContact<Cone>::takes_off(q)) {
+      r.setZero();
+      res.kind = ContactCase::TakeOff;
+      return true;
+    }
+    if (d.invertible) {
+      const Vec stick = -d.W_inv * q;
+      if (Cone::contains(stick, d.mu)) {
+        r = stick;
+        res.kind = ContactCase::Stick;
+        return true;
+      }
+      if constexpr (dim == 1) return false;
+      if constexpr (dim == 3) {
+        if (d.mu > 0 && slide_newton(d, q, stick, s, r, res)) return true;
+      }
+    }
+    res.converged = false;
+    return false;
+  }
+
+  /// 3D sliding by Newton on the direction, started from the warm start's
+  /// sliding direction -r_T / ||r_T|| (or, failing that, from the stick
+  /// candidate's). Accepts only a verified solution.
+  template <int D = dim, std::enable_if_t<D == 3, int> = 0>
+  static bool slide_newton(const Data& d, const Vec& q, const Vec& stick, const Settings& s,
+                           Vec& r, LocalResult& res) {
+    using Vec2 = SlidingEquation::Vec2;
+    Vec2 t(-r[1], -r[2]);
+    if (!(r[0] > 0) || t.squaredNorm() == 0) t = Vec2(-stick[1], -stick[2]);
+    if (t.squaredNorm() == 0) t = Vec2(q[1], q[2]);
+    const double norm = t.norm();
+    t = norm > 0 ? Vec2(t / norm) : Vec2(1, 0);
+    const SlidingEquation f(d.W, q, d.mu);
+    if (!f.newton(t, s.newton_iter)) return false;
+    const Vec candidate = SlidingEquation::reaction(d.W, q, d.mu, t);
+    if (!is_solution(d, q, candidate, s)) return false;
+    r = candidate;
+    res.kind = ContactCase::Slide;
+    return true;
+  }
+};
+
+}  // namespace local
+}  // namespace fcsolve

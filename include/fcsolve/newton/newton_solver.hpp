@@ -1,0 +1,145 @@
+// Semismooth Newton on the reduced problem FC/II(W, q, mu) (Alart & Curnier
+// 1991; Acary, Bremond & Huber 2018, [NSN-*]; Qi & Sun 1993 for the
+// semismooth Newton method):
+//   G(r) = [ G^a(r^a, u^a) ]_a = 0,   u = W r + q,
+//   J = A W + B  in d x d blocks (A, B block diagonal from the formulation),
+//   (J + delta I) d = -G,   r <- r + t d   (t: line search on psi = 1/2 ||G||^2)
+// Formulation<Cone> is a one-contact function (formulation/*.hpp): G^a and
+// an element (A^a, B^a) of its generalised Jacobian. delta is the
+// Levenberg-Marquardt-like shift of newton_step.hpp (rank-deficient W).
+// With settings.hybrid, a stalled Newton hands over to block Gauss-Seidel
+// sweeps and resumes once the error has dropped (gauss_seidel_fallback.hpp).
+// Convergence is judged by the FCLIB error of core/error.hpp, never by ||G||.
+#pragma once
+
+#include <fcsolve/cone/cones.hpp>
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/formulation/one_contact_function.hpp>
+#include <fcsolve/newton/contact_residual.hpp>
+#include <fcsolve/newton/gauss_seidel_fallback.hpp>
+#include <fcsolve/newton/linear_solvers.hpp>
+#include <fcsolve/newton/newton_loop.hpp>
+#include <fcsolve/newton/reduced_jacobian.hpp>
+#include <fcsolve/problem/validate.hpp>
+#include <fcsolve/storage/storage.hpp>
+
+#include <optional>
+#include <string>
+
+namespace fcsolve {
+
+template <template <class> class Formulation, class Cone, class Storage = SparseStorage<Cone::dim>,
+          class LinearSolver = DefaultNewtonLinearSolver<Storage>>
+class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver>> {
+  using Loop = NewtonLoop<Newton>;
+  friend Loop;
+
+ public:
+  static constexpr int d = Cone::dim;
+  using Function = Formulation<Cone>;
+  using Settings = NewtonSettings;
+  static_assert(is_cone_v<Cone>, "Cone must be a cone policy (cone/cones.hpp)");
+  static_assert(is_storage_v<Storage> && Storage::block_dim == d, "Storage must store d x d blocks");
+  static_assert(is_one_contact_function_v<Function>, "Formulation<Cone> must be a one-contact function");
+
+  explicit Newton(const Settings& s = {}) : Loop(s) {}
+  Newton(const Newton&) = delete;  // system_ points into jacobian_
+  Newton& operator=(const Newton&) = delete;
+
+  /// Validates the problem, stores W, fixes the pattern of J. The viewed
+  /// data must outlive the solver.
+  Newton& compute(const LocalProblemView& p) {
+    Stopwatch clock;
+    validate(p);
+    this->check_dimension(p.d, d);
+    problem_.emplace(p);
+    W_.compute(p.W);
+    jacobian_.compute(p.W);
+    system_.compute(jacobian_);
+    fallback_.compute(W_);
+    residual_.compute(p.mu, settings_.rho_strategy, settings_.rho,
+                      [this](Index a) { return W_.diagonal_block(a); });
+    const Index m = p.size();
+    r_.resize(m);
+    u_.resize(m);
+    dr_.resize(m);
+    Wd_.resize(m);
+    best_r_.resize(m);
+    scale_ = error_scale(p.q.norm());
+    reference_norm_ = residual_.reference_norm(p.q);
+    info_ = SolverInfo();
+    info_.setup_seconds = clock.seconds();
+    return *this;
+  }
+
+  /// r: warm start in, solution out (the best iterate if the solve fails);
+  /// u = W r + q on return.
+  const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
+    if (!problem_) throw UsageError("Newton::solve() called before compute()");
+    if (r.size() != problem_->size() || u.size() != problem_->size())
+      throw InvalidProblem("r", "r and u must have " + std::to_string(problem_->size()) + " entries");
+    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    Stopwatch clock;
+    r_ = r;
+    update_velocity();
+    this->run(clock);
+    r = r_;
+    u = u_;
+    info_.solve_seconds = clock.seconds();
+    return info_;
+  }
+
+ private:
+  using Loop::counters_;
+  using Loop::info_;
+  using Loop::settings_;
+
+  // ---- hooks of NewtonLoop
+  double error() const {
+    return std::sqrt(natural_map_norms<Cone>(r_, u_, problem_->mu).squared_sum) / scale_;
+  }
+  void refresh() { psi_ = residual_.evaluate(r_, u_, true); }
+  void set_rho_factor(double kappa) { residual_.set_rho_factor(kappa); }
+  void save_best() { best_r_ = r_; }
+  void restore_best() {
+    r_ = best_r_;
+    update_velocity();
+  }
+  bool fallback_sweep() {
+    fallback_.sweep(W_, problem_->q, problem_->mu, r_, u_);
+    return true;
+  }
+
+  /// One globalised Newton step; false when no step could be taken.
+  bool newton_step() {
+    FCSOLVE_NO_MALLOC_BEGIN();
+    jacobian_.assemble(residual_.A(), residual_.B(), system_.matrix());
+    FCSOLVE_NO_MALLOC_END();
+    if (!system_.solve(residual_.G(), dr_, this->shift(psi_, reference_norm_),
+                       settings_.singular_regularisation, counters_))
+      return false;
+    W_.multiply(dr_, Wd_);
+    const double t = this->step_length(psi_, [&](double s) { return residual_.trial(r_, dr_, u_, Wd_, s); });
+    if (t == 0) return false;
+    r_ += t * dr_;
+    update_velocity();
+    refresh();
+    return true;
+  }
+
+  void update_velocity() {
+    W_.multiply(r_, u_);
+    u_ += problem_->q;
+  }
+
+  std::optional<LocalProblemView> problem_;
+  Storage W_;
+  ReducedJacobian<d> jacobian_;
+  RegularisedNewtonSystem<LinearSolver, ReducedJacobian<d>> system_;  // points to jacobian_
+  GaussSeidelFallback<Cone, Storage> fallback_;
+  ContactResidual<Function, d> residual_;
+  Vector r_, u_, dr_, Wd_, best_r_;
+  double psi_ = 0, scale_ = 1, reference_norm_ = 1;
+};
+
+}  // namespace fcsolve

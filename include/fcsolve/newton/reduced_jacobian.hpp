@@ -1,0 +1,132 @@
+// The Newton matrix of the reduced problem, J = A W + B, with A, B block
+// diagonal (one d x d pair per contact, from the formulation):
+//   J^{ab} = A^a W^{ab}  (a != b),   J^{aa} = A^a W^{aa} + B^a.
+// Its pattern is W's d x d block pattern plus the diagonal blocks, each block
+// stored whole, fixed once by compute(): an iteration only rewrites values,
+// through positions precomputed here, without allocation. Assembles into a
+// compressed-column SparseMatrix (sparse LU) or a DenseMatrix (dense LU).
+#pragma once
+
+#include <fcsolve/core/types.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace fcsolve {
+namespace detail {
+
+/// Index into A.valuePtr() of the stored entry (row, col); -1 if absent.
+inline Index stored_position(const SparseMatrix& A, Index row, Index col) {
+  const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[col];
+  const int* end = A.innerIndexPtr() + A.outerIndexPtr()[col + 1];
+  const int* it = std::lower_bound(begin, end, static_cast<int>(row));
+  return (it != end && *it == row) ? static_cast<Index>(it - A.innerIndexPtr()) : -1;
+}
+
+}  // namespace detail
+
+template <int D>
+class ReducedJacobian {
+ public:
+  using Block = SmallMatrix<D>;
+  using BlockList = std::vector<Block, Eigen::aligned_allocator<Block>>;
+
+  /// Reads W's blocks and fixes the pattern of J.
+  void compute(const SparseMap& W) {
+    const Index nb = W.cols() / D;
+    num_blocks_ = nb;
+    // block (a, b) keys, sorted by block column then block row, plus the diagonal
+    std::vector<std::pair<Index, Index>> keys;  // (b, a)
+    for (Index j = 0; j < W.cols(); ++j)
+      for (SparseMap::InnerIterator it(W, j); it; ++it) keys.emplace_back(j / D, it.row() / D);
+    for (Index a = 0; a < nb; ++a) keys.emplace_back(a, a);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    row_.resize(keys.size());
+    col_.resize(keys.size());
+    for (std::size_t p = 0; p < keys.size(); ++p) {
+      col_[p] = keys[p].first;
+      row_[p] = keys[p].second;
+    }
+    w_.assign(keys.size(), Block::Zero());
+    for (Index j = 0; j < W.cols(); ++j)
+      for (SparseMap::InnerIterator it(W, j); it; ++it)
+        w_[find(it.row() / D, j / D)](it.row() % D, j % D) = it.value();
+    // the sparse pattern, then where each block column segment lives in it
+    std::vector<Eigen::Triplet<double, int>> t;
+    t.reserve(keys.size() * D * D);
+    for (std::size_t p = 0; p < keys.size(); ++p)
+      for (int k = 0; k < D; ++k)
+        for (int i = 0; i < D; ++i) t.emplace_back(int(row_[p] * D + i), int(col_[p] * D + k), 0.0);
+    pattern_.resize(nb * D, nb * D);
+    pattern_.setFromTriplets(t.begin(), t.end());
+    pattern_.makeCompressed();
+    position_.resize(keys.size() * D);
+    for (std::size_t p = 0; p < keys.size(); ++p)
+      for (int k = 0; k < D; ++k)
+        position_[p * D + k] = detail::stored_position(pattern_, row_[p] * D, col_[p] * D + k);
+    diagonal_.resize(nb * D);
+    for (Index i = 0; i < nb * D; ++i) diagonal_[i] = detail::stored_position(pattern_, i, i);
+  }
+
+  /// A matrix with J's pattern (sparse) or J's size (dense), values zero.
+  void initialise(SparseMatrix& J) const { J = pattern_; }
+  void initialise(DenseMatrix& J) const { J.setZero(pattern_.rows(), pattern_.cols()); }
+
+  /// J = A W + B, values only (J from initialise()).
+  void assemble(const BlockList& A, const BlockList& B, SparseMatrix& J) const {
+    double* values = J.valuePtr();
+    for (std::size_t p = 0; p < w_.size(); ++p) {
+      Block Jab = A[row_[p]] * w_[p];
+      if (row_[p] == col_[p]) Jab += B[row_[p]];
+      for (int k = 0; k < D; ++k)
+        Eigen::Map<SmallVector<D>>(values + position_[p * D + k]) = Jab.col(k);
+    }
+  }
+  void assemble(const BlockList& A, const BlockList& B, DenseMatrix& J) const {
+    for (std::size_t p = 0; p < w_.size(); ++p) {
+      auto Jab = J.template block<D, D>(row_[p] * D, col_[p] * D);
+      Jab.noalias() = A[row_[p]] * w_[p];
+      if (row_[p] == col_[p]) Jab += B[row_[p]];
+    }
+  }
+
+  /// J += delta I (regularisation of a singular system).
+  void add_to_diagonal(double delta, SparseMatrix& J) const {
+    for (Index i = 0; i < Index(diagonal_.size()); ++i) J.valuePtr()[diagonal_[i]] += delta;
+  }
+  void add_to_diagonal(double delta, DenseMatrix& J) const {
+    J.diagonal().array() += delta;
+  }
+
+  /// max(1, max |J_ii|): the scale of the regularisation shift.
+  double diagonal_scale(const SparseMatrix& J) const {
+    double s = 1;
+    for (const Index p : diagonal_) s = std::max(s, std::abs(J.valuePtr()[p]));
+    return s;
+  }
+  double diagonal_scale(const DenseMatrix& J) const {
+    return std::max(1.0, J.diagonal().cwiseAbs().maxCoeff());
+  }
+
+  Index num_stored_blocks() const { return Index(w_.size()); }
+  Index nonzeros() const { return pattern_.nonZeros(); }
+
+ private:
+  Index find(Index a, Index b) const {  // position of block (a, b): binary search in column b
+    const auto first = std::lower_bound(col_.begin(), col_.end(), b) - col_.begin();
+    const auto last = std::upper_bound(col_.begin(), col_.end(), b) - col_.begin();
+    return std::lower_bound(row_.begin() + first, row_.begin() + last, a) - row_.begin();
+  }
+
+  Index num_blocks_ = 0;
+  std::vector<Index> row_, col_;  // block coordinates, sorted by (col, row)
+  BlockList w_;                   // W^{ab}
+  SparseMatrix pattern_;
+  std::vector<Index> position_;  // value index of entry (a D, b D + k) of block p: [p D + k]
+  std::vector<Index> diagonal_;
+};
+
+}  // namespace fcsolve

@@ -1,0 +1,54 @@
+// Settings of the nonsmooth Gauss-Seidel solver (nsgs/nsgs_solver.hpp).
+#pragma once
+
+#include <fcsolve/core/solver_settings.hpp>
+
+#include <cstdint>
+
+namespace fcsolve {
+
+/// The order in which a sweep visits the contacts.
+enum class ContactOrdering {
+  Natural,          ///< 0, 1, ..., nc - 1
+  ShuffledOnce,     ///< one random permutation (seeded), kept for the whole solve
+  ShuffledEachSweep ///< a new random permutation every sweep
+};
+
+inline const char* to_string(ContactOrdering o) {
+  switch (o) {
+    case ContactOrdering::Natural: return "natural";
+    case ContactOrdering::ShuffledOnce: return "shuffle";
+    case ContactOrdering::ShuffledEachSweep: return "reshuffle";
+  }
+  return "?";
+}
+
+/// NSGS knobs; `LocalSettings` are the local solver's (e.g.
+/// local::Projection<Cone>::Settings). Common ones (tol, max_iter, max_time,
+/// record_history, callback) come from SolverSettings.
+template <class LocalSettings>
+struct NsgsSettings : SolverSettings {
+  /// Over-relaxation (PSOR): r^a <- omega r^a_local + (1 - omega) r^a.
+  /// omega < 1 helps on FEM problems (Acary et al. 2018, sec. 5.3); (0, 2).
+  double omega = 1.0;
+  ContactOrdering ordering = ContactOrdering::Natural;
+  std::uint32_t seed = 0;  ///< seed of the shuffles
+  /// When the best full error has not improved by 1% for this many sweeps,
+  /// switch to ShuffledEachSweep: exact block Gauss-Seidel in a fixed order
+  /// can fall into a cycle that a new order each sweep breaks. 0: never.
+  int stall_sweeps = 2000;
+  /// Full FCLIB error at least every `error_every` sweeps; in between, a
+  /// cheap test on ||r_{k+1} - r_k|| decides whether a full error is worth
+  /// computing. Success is only ever declared on a full error.
+  int error_every = 10;
+  /// Contact freezing: a contact whose local solution moved by at most
+  /// freeze_tol (relative) is skipped for the next `freezing` sweeps
+  /// (0: off). A full error over all contacts precedes any success, and
+  /// a failed check unfreezes everything.
+  int freezing = 0;
+  double freeze_tol = 1e-14;
+  /// Local (one-contact) solver settings.
+  LocalSettings local;
+};
+
+}  // namespace fcsolve

@@ -1,0 +1,298 @@
+// Nonsmooth (block) Gauss-Seidel for FC/II(W, q, mu) (Jean & Touzot 1988;
+// Moreau 1994; Acary, Bremond & Huber 2018, sec. 4.3 [NSGS-*], [PSOR-*]).
+//
+// A sweep visits every contact a and solves its one-contact problem
+//   u^a = W^{aa} r^a + qhat^a,  qhat^a = q^a + sum_{b != a} W^{ab} r^b,
+//   K^a* ∋ u^a + g(u^a) ⊥ r^a ∈ K^a,
+// with the latest r^b (Gauss-Seidel), by the local solver policy
+// (local/*.hpp), then relaxes r^a <- omega r^a_new + (1 - omega) r^a (PSOR).
+//
+// Storage with row access (DenseStorage, BlockSparseStorage) forms qhat^a
+// from the block row of W; SparseStorage (compressed columns) keeps
+// u = W r + q up to date with column updates u += W^{.a} (r^a_new - r^a).
+// The sweep allocates nothing (proved by the EIGEN_RUNTIME_NO_MALLOC test).
+//
+// Success is declared only on the full FCLIB error (core/error.hpp) of the
+// returned r: error = ||F_nat(r)|| / ||q|| <= tol. When the solve fails
+// (iteration or time budget, callback, NaN) r is the iterate with the
+// smallest full error seen, and info().error is that error.
+#pragma once
+
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/solver_settings.hpp>
+#include <fcsolve/core/timer.hpp>
+#include <fcsolve/local/one_contact.hpp>
+#include <fcsolve/nsgs/nsgs_settings.hpp>
+#include <fcsolve/problem/local_problem.hpp>
+#include <fcsolve/problem/validate.hpp>
+#include <fcsolve/storage/storage.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace fcsolve {
+
+template <class Cone, class Storage, class LocalSolver>
+class Nsgs {
+  static_assert(is_cone_v<Cone>, "Cone must be a cone policy (cone/cones.hpp)");
+  static_assert(is_storage_v<Storage>, "Storage must be a storage policy (storage/storage.hpp)");
+  static_assert(Storage::block_dim == Cone::dim, "Storage blocks must match the cone dimension");
+  static_assert(local::is_local_solver_v<LocalSolver>,
+                "LocalSolver must be a local solver policy (local/one_contact.hpp)");
+  static_assert(std::is_same_v<typename LocalSolver::Cone, Cone>,
+                "LocalSolver must be instantiated on the same cone");
+
+ public:
+  static constexpr int d = Cone::dim;
+  using Vec = typename Cone::Vec;
+  using Mat = SmallMatrix<d>;
+  using Settings = NsgsSettings<typename LocalSolver::Settings>;
+
+  Nsgs() = default;
+  explicit Nsgs(const Settings& s) : settings_(s) {}
+
+  /// Settings used by the next solve(). The local solver's settings are
+  /// read by compute() too (cached per-contact data): call compute() again
+  /// after changing them.
+  Settings& settings() { return settings_; }
+  const Settings& settings() const { return settings_; }
+  const SolverInfo& info() const { return info_; }
+  const Storage& storage() const { return storage_; }
+
+  /// Stores W in the storage policy and caches each diagonal block with the
+  /// local solver's per-contact data. The viewed data must outlive *this.
+  /// Throws InvalidProblem on inconsistent data.
+  Nsgs& compute(const LocalProblemView& p) {
+    Stopwatch clock;
+    if (p.d != d)
+      throw InvalidProblem("spacedim", "this solver is compiled for d = " + std::to_string(d) +
+                                           ", the problem has d = " + std::to_string(p.d));
+    validate(p);
+    problem_.emplace(p);
+    storage_.compute(p.W);
+    const Index nc = p.num_contacts(), m = p.size();
+    data_.resize(static_cast<std::size_t>(nc));
+    for (Index a = 0; a < nc; ++a)
+      data_[a] = LocalSolver::prepare(storage_.diagonal_block(a), p.mu[a], settings_.local);
+    order_.resize(static_cast<std::size_t>(nc));
+    frozen_.assign(static_cast<std::size_t>(nc), 0);
+    u_.resize(m);
+    work_.resize(m);
+    best_.resize(m);
+    scale_ = error_scale(p.q.norm());
+    info_ = SolverInfo();
+    info_.setup_seconds = clock.seconds();
+    return *this;
+  }
+
+  /// Solves from the warm start r (overwritten by the solution) and writes
+  /// u = W r + q. Returns info().
+  const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
+    Stopwatch clock;
+    check_solve_arguments(r, u);
+    const Settings& s = settings_;
+    const double setup = info_.setup_seconds;
+    info_ = SolverInfo();
+    info_.setup_seconds = setup;
+    if (s.record_history) info_.history.reserve(std::size_t(std::min(s.max_iter, 100000)) + 1);
+
+    ContactOrdering ordering = s.ordering;
+    std::iota(order_.begin(), order_.end(), Index(0));
+    if (ordering != ContactOrdering::Natural) {
+      rng_.seed(s.seed);
+      std::shuffle(order_.begin(), order_.end(), rng_);
+    }
+    std::fill(frozen_.begin(), frozen_.end(), 0);
+    local_failures_ = 0;
+
+    double error = full_error(r);  // also sets u_ = W r + q (column-update storage)
+    best_ = r;
+    best_error_ = error;
+    if (!std::isfinite(error)) return finish(r, u, Status::NumericalError, clock);
+    if (error <= s.tol) return finish(r, u, Status::Converged, clock);
+
+    const int every = std::max(s.error_every, 1);
+    double ratio = 1;  // full error / relative change, at the last full evaluation
+    double progress_error = error;  // stall detection: last 1% improvement
+    int progress_sweep = 0;
+    Status status = Status::MaxIterations;
+    for (int sweep_no = 1; sweep_no <= s.max_iter; ++sweep_no) {
+      FCSOLVE_NO_MALLOC_BEGIN();
+      if (ordering == ContactOrdering::ShuffledEachSweep)
+        std::shuffle(order_.begin(), order_.end(), rng_);
+      const SweepResult sw = sweep(r);
+      const double change = std::sqrt(sw.change2 / std::max(r.squaredNorm(), 1e-300));
+      const bool last = sweep_no == s.max_iter;
+      const bool full = sweep_no % every == 0 || change * ratio <= s.tol || last ||
+                        !std::isfinite(sw.change2);
+      if (full) {
+        error = std::isfinite(sw.change2) ? full_error(r) : sw.change2;
+        ratio = change > 0 ? error / change : ratio;
+      }
+      FCSOLVE_NO_MALLOC_END();
+      info_.iterations = sweep_no;
+      if (!std::isfinite(sw.change2) || (full && !std::isfinite(error))) {
+        status = Status::NumericalError;
+        break;
+      }
+      const double estimate = full ? error : change * ratio;
+      if (full) {
+        if (error < best_error_) {
+          best_error_ = error;
+          best_ = r;
+        }
+        if (error <= s.tol) {
+          status = Status::Converged;
+          break;
+        }
+        if (error < 0.99 * progress_error) {
+          progress_error = error;
+          progress_sweep = sweep_no;
+        } else if (s.stall_sweeps > 0 && sweep_no - progress_sweep >= s.stall_sweeps &&
+                   ordering != ContactOrdering::ShuffledEachSweep) {
+          if (ordering == ContactOrdering::Natural) rng_.seed(s.seed);
+          ordering = ContactOrdering::ShuffledEachSweep;
+          progress_sweep = sweep_no;
+          note("no progress: contacts reshuffled every sweep from sweep " +
+               std::to_string(sweep_no));
+        }
+        if (sw.skipped > 0 && change * ratio <= s.tol) {
+          // converged on the visited contacts only: check the frozen ones
+          std::fill(frozen_.begin(), frozen_.end(), 0);
+        } else if (change == 0 && sw.skipped == 0) {
+          status = Status::Stalled;  // a fixed point of the sweep that is not a solution
+          note("the sweep no longer changes r");
+          break;
+        }
+      }
+      if (s.record_history) info_.history.push_back(estimate);
+      if (s.callback && !s.callback(IterationInfo{sweep_no, estimate, full, clock.seconds()})) {
+        status = Status::Stopped;
+        break;
+      }
+      if (clock.seconds() > s.max_time) {
+        status = Status::TimeLimit;
+        break;
+      }
+    }
+    if (status != Status::Converged && status != Status::NumericalError) {
+      const double e = full_error(r);
+      if (e < best_error_) {
+        best_error_ = e;
+        best_ = r;
+      }
+    }
+    return finish(r, u, status, clock);
+  }
+
+ private:
+  struct SweepResult {
+    double change2 = 0;  ///< ||r_new - r_old||^2 over the visited contacts
+    Index skipped = 0;   ///< frozen contacts not visited
+  };
+
+  SweepResult sweep(Eigen::Ref<Vector> r) {
+    [[maybe_unused]] const LocalProblemView& p = *problem_;
+    const Settings& s = settings_;
+    SweepResult out;
+    for (const Index a : order_) {
+      if (s.freezing > 0 && frozen_[a] > 0) {
+        --frozen_[a];
+        ++out.skipped;
+        continue;
+      }
+      auto ra = r.template segment<d>(a * d);
+      const Vec r_old = ra;
+      const Mat& Waa = storage_.diagonal_block(a);
+      Vec qhat;
+      if constexpr (Storage::row_access) {
+        qhat = p.q.template segment<d>(a * d) + storage_.block_row_product(a, r);
+      } else {
+        qhat = u_.template segment<d>(a * d);
+      }
+      qhat.noalias() -= Waa * r_old;
+      Vec r_new = r_old;
+      const local::LocalResult lr = LocalSolver::solve(data_[a], qhat, r_new, s.local);
+      if (!lr.converged) ++local_failures_;
+      if (!r_new.allFinite()) {  // keep the old value, count it as a failure
+        ++local_failures_;
+        continue;
+      }
+      if (s.omega != 1.0) r_new = s.omega * r_new + (1 - s.omega) * r_old;
+      const Vec dr = r_new - r_old;
+      ra = r_new;
+      const double dr2 = dr.squaredNorm();
+      out.change2 += dr2;
+      if constexpr (!Storage::row_access) {
+        if (dr2 > 0) storage_.add_block_column(a, dr, u_);
+      }
+      if (s.freezing > 0 &&
+          dr2 <= s.freeze_tol * s.freeze_tol * std::max(r_new.squaredNorm(), 1e-300))
+        frozen_[a] = s.freezing;
+    }
+    return out;
+  }
+
+  /// FCLIB error of r; refreshes u_ (and removes the drift of the column
+  /// updates).
+  double full_error(const Eigen::Ref<const Vector>& r) {
+    const LocalProblemView& p = *problem_;
+    storage_.multiply(r, work_);
+    work_ += p.q;
+    if constexpr (!Storage::row_access) u_ = work_;
+    return std::sqrt(natural_map_norms<Cone>(r, work_, p.mu).squared_sum) / scale_;
+  }
+
+  const SolverInfo& finish(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u, Status status,
+                           const Stopwatch& clock) {
+    // On success r is the last (and best) iterate; otherwise return the best
+    // one seen, which is finite.
+    if (status != Status::Converged) r = best_;
+    storage_.multiply(r, u);
+    u += problem_->q;
+    info_.status = status;
+    info_.error = best_error_;
+    if (local_failures_ > 0)
+      note(std::to_string(local_failures_) + " local solves did not converge");
+    info_.solve_seconds = clock.seconds();
+    return info_;
+  }
+
+  void note(const std::string& text) {
+    info_.message += (info_.message.empty() ? "" : "; ") + text;
+  }
+
+  void check_solve_arguments(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& u) const {
+    if (!problem_) throw UsageError("Nsgs::solve() called before compute()");
+    const Index m = problem_->size();
+    if (r.size() != m)
+      throw InvalidProblem("r", "expected " + std::to_string(m) + " entries, got " +
+                                    std::to_string(r.size()));
+    if (u.size() != m)
+      throw InvalidProblem("u", "expected " + std::to_string(m) + " entries, got " +
+                                    std::to_string(u.size()));
+    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    if (!(settings_.omega > 0 && settings_.omega < 2))
+      throw UsageError("NSGS: omega must be in (0, 2), got " + std::to_string(settings_.omega));
+  }
+
+  Settings settings_;
+  SolverInfo info_;
+  std::optional<LocalProblemView> problem_;
+  Storage storage_;
+  std::vector<typename LocalSolver::Data, Eigen::aligned_allocator<typename LocalSolver::Data>> data_;
+  std::vector<Index> order_;
+  std::vector<int> frozen_;
+  std::minstd_rand rng_;  // small state: cheap to construct and seed
+  Vector u_, work_, best_;
+  double scale_ = 1, best_error_ = 0;
+  long long local_failures_ = 0;
+};
+
+}  // namespace fcsolve
