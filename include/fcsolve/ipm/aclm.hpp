@@ -84,7 +84,7 @@ class AclmSolver : public IpmSolverBase<Form> {
       opt.slow_below = 0;
       opt.record_history = false;
       opt.iteration_offset = total;
-      const IpmReport rep = this->engine_->run(it, opt);
+      const IpmReport rep = this->run_engine(it, opt);
       total += rep.iterations;
       last_exit = rep.exit;
       if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped) {

@@ -99,7 +99,7 @@ class GlobalForm {
   double error_scale() const { return q_norm_ > 0 ? q_norm_ : 1.0; }
   KktSystem<N, Factorization>& kkt() { return kkt_; }
   /// M factorised once: v = M^-1 (H r + f).
-  const GlobalReduction<Backend>& reduction() const { return reduction_; }
+  const GlobalReduction<EigenBackend>& reduction() const { return reduction_; }
 
   /// r_d = M v - Hs y - f,  r_p = Hs^T v + w0 + E s - x.
   void residuals(const Iterate& it, Vector& r_d, Vector& r_p) const {
@@ -188,7 +188,10 @@ class GlobalForm {
  private:
   std::optional<GlobalProblemView> p_;
   Index n_ = 0, m_ = 0, nc_ = 0;
-  GlobalReduction<Backend> reduction_;
+  // M once, for ||q|| and v = M^-1 (H r + f): Eigen's simplicial LDL^T (or
+  // LU) has less set-up cost than CHOLMOD's supernodal one on the diagonal
+  // or block-diagonal M of multibody scenes, and runs once.
+  GlobalReduction<EigenBackend> reduction_;
   SparseMatrix Hs_;
   Vector w0_;
   KktSystem<N, Factorization> kkt_;

@@ -38,6 +38,12 @@ inline std::string format_number(double x) {
   return buf;
 }
 
+/// Where a solve spent its time (for benchmarks: the factorisation share).
+struct IpmStatistics {
+  int factorizations = 0;
+  double factor_seconds = 0;  ///< assembling + factorising Newton matrices
+};
+
 template <class Form>
 class IpmSolverBase {
  public:
@@ -45,6 +51,7 @@ class IpmSolverBase {
   using Cone = typename Form::Cone;
 
   const SolverInfo& info() const { return info_; }
+  const IpmStatistics& statistics() const { return stats_; }
   const Form& form() const { return *form_; }
 
  protected:
@@ -80,6 +87,7 @@ class IpmSolverBase {
   /// Checks compute() was called and resets info() (keeping the setup time).
   SolverInfo& begin_solve() {
     require_computed();
+    stats_ = IpmStatistics();
     const double setup = info_.setup_seconds;
     info_ = SolverInfo();
     info_.setup_seconds = setup;
@@ -161,10 +169,19 @@ class IpmSolverBase {
            format_number(p.initial_error) + " -> " + format_number(p.error);
   }
 
+  /// Runs the engine and accounts for its factorisations.
+  IpmReport run_engine(Iterate& it, const IpmOptions& opt) {
+    IpmReport rep = engine_->run(it, opt);
+    stats_.factorizations += rep.factorizations;
+    stats_.factor_seconds += rep.factor_seconds;
+    return rep;
+  }
+
   std::unique_ptr<Form> form_;
   std::unique_ptr<InteriorPoint<Form>> engine_;
   Iterate it_;
   SolverInfo info_;
+  IpmStatistics stats_;
 };
 
 }  // namespace ipm

@@ -12,8 +12,8 @@
 //   DenseKktFactorization: Eigen::LDLT / PartialPivLU for small scenes, which
 //     must not pay for sparse machinery.
 //
-// Both store K in full (both triangles): LDL^T reads the lower one, LU
-// both, and the assembly code does not depend on the choice.
+// Both store K in full (both triangles): LDL^T reads one, LU both, and the
+// assembly code does not depend on the choice.
 #pragma once
 
 #include <fcsolve/core/types.hpp>
@@ -21,6 +21,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 
 #ifdef FCSOLVE_WITH_CHOLMOD
@@ -34,24 +35,39 @@
 namespace fcsolve {
 namespace ipm {
 
-/// The sparse LDL^T and LU a linear-algebra backend offers for K.
+/// The sparse LDL^T and LU a linear-algebra backend offers for K. K is
+/// stored pre-permuted (SparseKktFactorization), so LDL^T runs in natural
+/// order.
 template <class Backend>
 struct KktSolvers {
-  using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>>;
+  using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>;
   using Lu = typename Backend::GeneralSolver;
-  static void quiet(Ldlt&) {}
+  static void configure(Ldlt&) {}
+  static void configure(Lu&) {}
 };
 #ifdef FCSOLVE_WITH_CHOLMOD
 template <>
 struct KktSolvers<SuiteSparseBackend> {
-  using Ldlt = Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Lower>;
+  using Ldlt = Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper>;
   using Lu = SuiteSparseBackend::GeneralSolver;
-  /// A failed factorisation is an expected event here (the caller then
-  /// regularises): keep CHOLMOD from printing it.
-  static void quiet(Ldlt& s) { s.cholmod().print = 0; }
+  /// Natural order (K comes pre-permuted: CHOLMOD would otherwise form
+  /// P K P^T at every factorisation), and quiet: a failed factorisation is
+  /// an expected event here (the caller then regularises).
+  static void configure(Ldlt& s) {
+    s.cholmod().print = 0;
+    s.cholmod().nmethods = 1;
+    s.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    s.cholmod().postorder = 0;
+  }
+  /// No refinement inside UMFPACK's solve: KktSystem refines against the
+  /// unregularised matrix itself.
+  static void configure(Lu& s) { s.umfpackControl()(UMFPACK_IRSTEP) = 0; }
 };
 #endif
 
+/// K in compressed columns, symmetrically permuted once by AMD (the
+/// ordering depends on the pattern only), so that every factorisation
+/// works on it in place.
 template <class Backend_>
 class SparseKktFactorization {
  public:
@@ -59,56 +75,67 @@ class SparseKktFactorization {
   static constexpr bool is_dense = false;
 
   /// Takes the pattern (values are overwritten before each factorisation).
-  void set_pattern(SparseMatrix pattern, bool symmetric) {
-    K_ = std::move(pattern);
+  void set_pattern(const SparseMatrix& pattern, bool symmetric) {
+    if (perm_.size() != pattern.rows()) {
+      Eigen::AMDOrdering<int> amd;
+      Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+      amd(pattern, inverse);  // row/column j of the permuted K is inverse(j) of K
+      perm_ = inverse.inverse();
+    }
+    K_ = pattern.twistedBy(perm_);
     K_.makeCompressed();
     symmetric_ = symmetric;
     analysed_ = false;
     sym_.reset();
     gen_.reset();
+    pb_.resize(K_.rows());
+    px_.resize(K_.rows());
   }
   Index size() const { return K_.rows(); }
   bool symmetric() const { return symmetric_; }
-  /// Position of entry (i, j) in values() (-1 if not in the pattern).
+  /// Position of entry (i, j) of K in values() (-1 if not in the pattern).
   Index index_of(Index i, Index j) const {
+    const int pi = perm_.indices()[i], pj = perm_.indices()[j];
     const int* inner = K_.innerIndexPtr();
-    const int* b = inner + K_.outerIndexPtr()[j];
-    const int* e = inner + K_.outerIndexPtr()[j + 1];
-    const int* it = std::lower_bound(b, e, int(i));
-    return (it != e && *it == i) ? Index(it - inner) : Index(-1);
+    const int* b = inner + K_.outerIndexPtr()[pj];
+    const int* e = inner + K_.outerIndexPtr()[pj + 1];
+    const int* it = std::lower_bound(b, e, pi);
+    return (it != e && *it == pi) ? Index(it - inner) : Index(-1);
   }
   double* values() { return K_.valuePtr(); }
   Index num_values() const { return K_.nonZeros(); }
 
   /// Numerical factorisation of the current values (symbolic analysis once).
   bool factorize() {
-    if (symmetric_) {
-      if (!sym_) {
-        sym_ = std::make_unique<typename KktSolvers<Backend>::Ldlt>();
-        KktSolvers<Backend>::quiet(*sym_);
-      }
-      if (!analysed_) sym_->analyzePattern(K_);
-      analysed_ = true;
-      sym_->factorize(K_);
-      return sym_->info() == Eigen::Success;
-    }
-    if (!gen_) gen_ = std::make_unique<typename KktSolvers<Backend>::Lu>();
-    if (!analysed_) gen_->analyzePattern(K_);
-    analysed_ = true;
-    gen_->factorize(K_);
-    return gen_->info() == Eigen::Success;
+    if (symmetric_) return factorize_with(sym_);
+    return factorize_with(gen_);
   }
   void solve(const Vector& b, Vector& x) const {
-    if (symmetric_) x = sym_->solve(b);
-    else x = gen_->solve(b);
+    pb_.noalias() = perm_ * b;
+    if (symmetric_) px_ = sym_->solve(pb_);
+    else px_ = gen_->solve(pb_);
+    x.noalias() = perm_.transpose() * px_;
   }
-  const SparseMatrix& matrix() const { return K_; }
 
  private:
-  SparseMatrix K_;  // kept alive: CHOLMOD and UMFPACK refer to it
+  template <class Solver>
+  bool factorize_with(std::unique_ptr<Solver>& solver) {
+    if (!solver) {
+      solver = std::make_unique<Solver>();
+      KktSolvers<Backend>::configure(*solver);
+    }
+    if (!analysed_) solver->analyzePattern(K_);
+    analysed_ = true;
+    solver->factorize(K_);
+    return solver->info() == Eigen::Success;
+  }
+
+  SparseMatrix K_;  // P K P^T, kept alive: CHOLMOD and UMFPACK refer to it
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm_;
   bool symmetric_ = true, analysed_ = false;
   std::unique_ptr<typename KktSolvers<Backend>::Ldlt> sym_;
   std::unique_ptr<typename KktSolvers<Backend>::Lu> gen_;
+  mutable Vector pb_, px_;
 };
 
 class DenseKktFactorization {

@@ -168,7 +168,7 @@ class KktSystem {
         break;
       }
       rel = rn;
-      if (k == refinement || rn <= 1e-15) break;
+      if (k == refinement || rn <= 1e-11) break;
       factor_.solve(res_, corr_);
       x += corr_;
     }

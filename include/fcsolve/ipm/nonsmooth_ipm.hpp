@@ -72,7 +72,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
       opt.max_iter = remaining();
       opt.max_time = st.max_time - clock.seconds();
       opt.iteration_offset = total;
-      const IpmReport rep = this->engine_->run(it, opt);
+      const IpmReport rep = this->run_engine(it, opt);
       total += rep.iterations;
       info.history.insert(info.history.end(), rep.history.begin(), rep.history.end());
       msg += (msg.empty() ? "" : "; ") + this->describe(what, rep);
@@ -130,6 +130,8 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
       Vector rr, ww;
       const SolverInfo ai = aclm.solve(rr, ww);
       total += ai.iterations;
+      this->stats_.factorizations += aclm.statistics().factorizations;
+      this->stats_.factor_seconds += aclm.statistics().factor_seconds;
       msg += "; fallback " + ai.message;
       consider(rr, ww, ai.error);
     }

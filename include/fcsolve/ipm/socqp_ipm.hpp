@@ -64,7 +64,7 @@ class SocqpIpm : public IpmSolverBase<Form> {
     this->engine_->cold_start(it, false);
     const IpmSettings& st = settings_;
     IpmOptions opt = this->engine_options(st, false, st.tol, st.max_iter, st.max_time);
-    IpmReport rep = this->engine_->run(it, opt);
+    IpmReport rep = this->run_engine(it, opt);
     info.iterations = rep.iterations;
     info.history = rep.history;
     info.message = this->describe("IPM", rep);
@@ -79,7 +79,7 @@ class SocqpIpm : public IpmSolverBase<Form> {
         opt.slow_below = 0;
         opt.max_iter = st.max_iter - info.iterations;
         opt.iteration_offset = info.iterations;
-        const IpmReport more = this->engine_->run(it, opt);
+        const IpmReport more = this->run_engine(it, opt);
         info.iterations += more.iterations;
         info.history.insert(info.history.end(), more.history.begin(), more.history.end());
         info.message += "; " + this->describe("IPM resumed", more);
