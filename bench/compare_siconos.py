@@ -47,6 +47,9 @@ PAIRS = {
         ("nsgs", ["--ordering", "reshuffle"], "NSGS-SHUFFLE"),
     ],
     "newton": [("nsn-ac", [], "NSN-AC"), ("nsn-fb", [], "NSN-FB"), ("nsn-nm", [], "NSN-NM")],
+    # interior-point family on global problems (gfc3d_driver for Siconos)
+    "ipm": [("nipm", [], "IPM"), ("aclm-newton", [], "IPM"), ("nipm", [], "GNSGS-WR"),
+            ("nipm", [], "GNSN-AC")],
 }
 
 
