@@ -36,7 +36,8 @@ struct NipmSettings : IpmSettings {
     max_iter = 200;
     sigma_max = 0.5;  // the talk's sigma in (0, 0.5)
   }
-  bool recover = true;  ///< run the recovery steps 2-4 when step 1 fails
+  bool recover = true;   ///< run the recovery steps 2-4 when step 1 fails
+  bool recentre = true;  ///< include step 3 (re-centring) in the recovery
 };
 
 template <class Form>
@@ -104,7 +105,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
       stopped = rep.exit == IpmExit::Stopped;
     }
     // 3. Re-centre from the best iterate at a larger barrier parameter.
-    if (!done() && !stopped && st.recover && best_iterate_.x.size()) {
+    if (!done() && !stopped && st.recover && st.recentre && best_iterate_.x.size()) {
       it = best_iterate_;
       recentre(it, 1e4);
       IpmOptions safe = opt;
@@ -132,7 +133,10 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
       total += ai.iterations;
       this->stats_.factorizations += aclm.statistics().factorizations;
       this->stats_.factor_seconds += aclm.statistics().factor_seconds;
-      msg += "; fallback " + ai.message;
+      std::string what = ai.message;
+      const std::string prefix = "converged; ";
+      if (what.compare(0, prefix.size(), prefix) == 0) what.erase(0, prefix.size());
+      msg += "; fallback " + what;
       consider(rr, ww, ai.error);
     }
     r = best_r_;

@@ -32,8 +32,10 @@ inline std::vector<SettingSpec> ipm_settings(IpmKind kind) {
     v.push_back(integer_setting("max_outer", 60, "outer (s-update) iterations", 1, 100000));
     v.push_back(real_setting("inner_ratio", 0.1, "inner tolerance / outer error", 1e-6, 1.0));
   }
-  if (kind == IpmKind::Nipm)
-    v.push_back(boolean_setting("recover", true, "re-centre / resume / ACLM when the NIPM stalls"));
+  if (kind == IpmKind::Nipm) {
+    v.push_back(boolean_setting("recover", true, "resume / re-centre / ACLM when the NIPM stalls"));
+    v.push_back(boolean_setting("recentre", true, "re-centring as a recovery step"));
+  }
   return v;
 }
 
@@ -84,6 +86,7 @@ SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, Vector&
   if (kind == IpmKind::Nipm) {
     auto s = ipm_settings_from<ipm::NipmSettings>(req);
     s.recover = req.settings.boolean("recover");
+    s.recentre = req.settings.boolean("recentre");
     ipm::NonsmoothIpm<Form> solver(s);
     solver.compute(p);
     return solver.solve(r, w);
