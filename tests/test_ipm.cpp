@@ -179,6 +179,41 @@ TEST_CASE("NIPM and ACLM find the closed-form one-contact solutions", "[ipm][nip
   }
 }
 
+TEST_CASE("2D contacts (d = 2): closed-form one-contact solutions", "[ipm][2d]") {
+  struct Case {
+    Eigen::Vector2d q, r;
+  };
+  const std::vector<Case> cases = {{{1, 0.3}, {0, 0}}, {{-2, 0.1}, {2, -0.1}}, {{-1, 2}, {1, -0.5}}};
+  for (const auto& c : cases) {
+    CAPTURE(c.q.transpose());
+    LocalProblem p;
+    p.d = 2;
+    p.W.resize(2, 2);
+    p.W.setIdentity();
+    p.q = c.q;
+    p.mu = Vector::Constant(1, 0.5);
+    GlobalProblem g;
+    g.d = 2;
+    g.M = p.W;
+    g.H = p.W;
+    g.f = c.q;
+    g.w = Vector::Zero(2);
+    g.mu = p.mu;
+    for (const char* name : {"nipm", "aclm-newton"}) {
+      CAPTURE(name);
+      auto req = registry::make_request(registry::find(name));
+      req.common.tol = 1e-10;
+      const auto local = registry::solve(LocalProblemView(p), name, req);
+      CHECK(local.info.converged());
+      CHECK(local_error(p, local.r) <= 1e-10);
+      CHECK((local.r - c.r).norm() <= 1e-8);
+      const auto global = run_entry(g, name, 1e-10);
+      CHECK(global.info.converged());
+      CHECK((global.r - c.r).norm() <= 1e-8);
+    }
+  }
+}
+
 TEST_CASE("NIPM and ACLM solve every global problem to 1e-8", "[ipm][nipm][aclm][fclib]") {
   for (const auto& path : shared_global_files()) {
     CAPTURE(path);
