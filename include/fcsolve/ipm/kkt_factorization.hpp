@@ -169,7 +169,6 @@ class DenseKktFactorization {
     if (symmetric_) x = ldlt_.solve(b);
     else x = lu_.solve(b);
   }
-  const DenseMatrix& matrix() const { return K_; }
 
  private:
   DenseMatrix K_;

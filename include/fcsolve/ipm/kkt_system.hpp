@@ -116,7 +116,6 @@ class KktSystem {
 
   /// Writes A0 + G B G^T + delta diag(weights) (B = blocks()) and factorises it.
   bool factorize(double delta) {
-    delta_ = delta;
     double* val = factor_.values();
     std::fill(val, val + factor_.num_values(), 0.0);
     const double* a0 = A0_.valuePtr();
@@ -134,10 +133,8 @@ class KktSystem {
     }
     if (delta != 0)
       for (Index j = 0; j < n_; ++j) val[diag_index_[std::size_t(j)]] += delta * reg_weight_[j];
-    factorized_ = factor_.factorize();
-    return factorized_;
+    return factor_.factorize();
   }
-  bool factorized() const { return factorized_; }
 
   /// y = (A0 + G B G^T) x, without the regularisation.
   void apply(const Vector& x, Vector& y) const {
@@ -175,7 +172,6 @@ class KktSystem {
     return rel;
   }
 
-  const Factorization& factorization() const { return factor_; }
 
  private:
   const double* local_block(Index a) const {
@@ -190,8 +186,6 @@ class KktSystem {
   Blocks blocks_;
   Factorization factor_;
   Vector res_, corr_, work_, reg_weight_;
-  double delta_ = 0;
-  bool factorized_ = false;
 };
 
 }  // namespace ipm
