@@ -68,6 +68,7 @@ class AclmSolver : public IpmSolverBase<Form> {
     this->engine_->cold_start(it, false);
     Vector s = s0_, Fs(nc), u, best_r, best_w, ds(nc);
     double best_error = std::numeric_limits<double>::infinity(), prev_residual = 0;
+    double failed_polish_error = std::numeric_limits<double>::infinity();
     Vector prev_s = s;
     int total = 0, outer = 0, newton_steps = 0, fp_steps = 0, halvings = 0;
     double inner_tol = std::max(0.1, st.tol);
@@ -108,7 +109,9 @@ class AclmSolver : public IpmSolverBase<Form> {
         ++outer;
         break;
       }
-      if (st.polish && error < st.polish_below) {
+      // Polish once the error is small, and again only after the outer
+      // loop has divided it by 10 since a polish that did not finish.
+      if (st.polish && error < st.polish_below && error < 0.1 * failed_polish_error) {
         Vector rp = r, wp = w;
         const PolishResult pr = this->polish(st, rp, wp, nullptr, st.tol);
         if (pr.error < best_error) {
@@ -122,6 +125,7 @@ class AclmSolver : public IpmSolverBase<Form> {
           ++outer;
           break;
         }
+        failed_polish_error = error;
       }
       // Safeguard of the Newton variant: a step that did not reduce the
       // outer residual is halved (twice), then replaced by a fixed-point step.

@@ -60,7 +60,7 @@ struct KktSolvers<SuiteSparseBackend> {
     s.cholmod().postorder = 0;
   }
   /// No refinement inside UMFPACK's solve: KktSystem refines against the
-  /// unregularised matrix itself.
+  /// unregularised matrix itself, and the polish is a Newton iteration.
   static void configure(Lu& s) { s.umfpackControl()(UMFPACK_IRSTEP) = 0; }
 };
 #endif

@@ -19,6 +19,7 @@
 #include <fcsolve/core/error.hpp>
 #include <fcsolve/formulation/natural_map.hpp>
 #include <fcsolve/ipm/form_common.hpp>
+#include <fcsolve/ipm/kkt_factorization.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 
@@ -71,21 +72,36 @@ void natural_map_blocks(const Vector& r, const Vector& u, const Eigen::Ref<const
   }
 }
 
-/// Solves J dz = b with a dense LU (small systems) or the backend's sparse LU.
+/// J dz = b for the successive Jacobians of one polish: dense LU for small
+/// systems, else the backend's sparse LU with the symbolic analysis of the
+/// first Jacobian reused (every Jacobian has the same pattern: all N x N
+/// blocks are stored, zeros included).
 template <class Backend>
-bool solve_general(const SparseMatrix& J, const Vector& b, Vector& x) {
-  if (J.rows() <= 400) {
-    const DenseMatrix dense = J;
-    Eigen::PartialPivLU<DenseMatrix> lu(dense);
-    x = lu.solve(b);
-  } else {
-    typename Backend::GeneralSolver lu;
-    lu.compute(J);
-    if (lu.info() != Eigen::Success) return false;
-    x = lu.solve(b);
+class JacobianSolver {
+ public:
+  bool solve(const SparseMatrix& J, const Vector& b, Vector& x) {
+    if (J.rows() <= 400) {
+      const DenseMatrix dense = J;
+      x = Eigen::PartialPivLU<DenseMatrix>(dense).solve(b);
+      return x.allFinite();
+    }
+    J_ = J;  // the LU reads it again at solve time
+    if (!analysed_) {
+      KktSolvers<Backend>::configure(lu_);
+      lu_.analyzePattern(J_);
+      analysed_ = true;
+    }
+    lu_.factorize(J_);
+    if (lu_.info() != Eigen::Success) return false;
+    x = lu_.solve(b);
+    return x.allFinite();
   }
-  return x.allFinite();
-}
+
+ private:
+  SparseMatrix J_;
+  typename Backend::GeneralSolver lu_;
+  bool analysed_ = false;
+};
 
 }  // namespace detail
 
@@ -112,6 +128,7 @@ PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v,
     return e1 * e1 + e2 * e2;
   };
   PolishResult res;
+  detail::JacobianSolver<Backend> linear;
   double error;
   double merit = evaluate(v, r, true, error);
   res.initial_error = res.error = error;
@@ -139,7 +156,7 @@ PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v,
     J.setFromTriplets(t.begin(), t.end());
     J.makeCompressed();
     const Vector rhs = -F;
-    if (!detail::solve_general<Backend>(J, rhs, dz)) break;
+    if (!linear.solve(J, rhs, dz)) break;
     // Backtracking on the scaled squared residual.
     double step = 1, trial_error = error, trial_merit = merit;
     Vector v_try, r_try;
@@ -179,6 +196,7 @@ PolishResult polish_local(const LocalProblemView& p, Vector& r, const Vector* fr
     return phi.norm() / qs;
   };
   PolishResult res;
+  detail::JacobianSolver<Backend> linear;
   double error = evaluate(r, true);
   res.initial_error = res.error = error;
   std::vector<Eigen::Triplet<double, int>> t;
@@ -201,7 +219,7 @@ PolishResult polish_local(const LocalProblemView& p, Vector& r, const Vector* fr
     J.setFromTriplets(t.begin(), t.end());
     J.makeCompressed();
     const Vector rhs = -phi;
-    if (!detail::solve_general<Backend>(J, rhs, dr)) break;
+    if (!linear.solve(J, rhs, dr)) break;
     double step = 1, trial = error;
     Vector r_try;
     bool accepted = false;
