@@ -88,10 +88,6 @@ class AclmSolver : public IpmSolverBase<Form> {
       const IpmReport rep = this->run_engine(it, opt);
       total += rep.iterations;
       last_exit = rep.exit;
-      if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped) {
-        note = this->describe("inner IPM", rep);
-        break;
-      }
       // Outer residual: F(s) - s, and the FCLIB error of the inner solution.
       this->extract(it, r, w);
       this->form_->velocity(it, u);
@@ -99,10 +95,14 @@ class AclmSolver : public IpmSolverBase<Form> {
       const double error = this->form_->error(it, false);
       const double residual = (Fs - s).norm();
       if (st.record_history) info.history.push_back(error);
-      if (error < best_error) {
+      if (error < best_error || best_r.size() == 0) {
         best_error = error;
         best_r = r;
         best_w = w;
+      }
+      if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped) {
+        note = this->describe("inner IPM", rep);
+        break;
       }
       if (error <= st.tol) {
         converged = true;

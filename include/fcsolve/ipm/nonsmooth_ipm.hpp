@@ -66,6 +66,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     this->engine_->cold_start(it, true);
 
     best_error_ = std::numeric_limits<double>::infinity();
+    best_r_.resize(0);
     std::string& msg = info.message;
     int total = 0;
     auto remaining = [&] { return st.max_iter - total; };
@@ -163,7 +164,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
   /// Keeps (r, w) if its FCLIB error beats the best so far (and the iterate
   /// behind it, for the re-centring).
   void consider(const Vector& r, const Vector& w, double error) {
-    if (!(error < best_error_)) return;
+    if (!(error < best_error_) && best_r_.size()) return;
     best_error_ = error;
     best_r_ = r;
     best_w_ = w;
