@@ -51,6 +51,9 @@ PAIRS = {
                ("nsn-jm", [], "NSN-JM"), ("nsn-ac-hybrid", [], "NSN-AC")],
     # FC/I natively (global files only): fcsolve in (v, r) vs Siconos gfc3d NSN-AC
     "newton-global": [("nsn-ac-global", [], "GNSN-AC"), ("nsn-fb-global", [], "GNSN-AC")],
+    # interior-point family on global problems (gfc3d_driver for Siconos)
+    "ipm": [("nipm", [], "IPM"), ("aclm-newton", [], "IPM"), ("nipm", [], "GNSGS-WR"),
+            ("nipm", [], "GNSN-AC")],
 }
 
 

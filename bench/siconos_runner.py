@@ -77,8 +77,11 @@ SOLVERS = {
     "NSN-FB": dict(local="SICONOS_FRICTION_3D_NSN_FB", chunked=True),
     "NSN-NM": dict(local="SICONOS_FRICTION_3D_NSN_NM", chunked=True),
     "NSN-JM": dict(local="SICONOS_FRICTION_3D_NSN_AC", configure=_nsn_jean_moreau, chunked=True),
-    "GNSN-AC": dict(global_="SICONOS_GLOBAL_FRICTION_3D_NSN_AC", chunked=False),
     "IPM": dict(global_="SICONOS_GLOBAL_FRICTION_3D_IPM", chunked=False),
+    # gfc3d solvers on the global problem: NSGS on Siconos' own reduction
+    # (then v), and Alart-Curnier Newton in (v, r).
+    "GNSGS-WR": dict(global_="SICONOS_GLOBAL_FRICTION_3D_NSGS_WR", chunked=False),
+    "GNSN-AC": dict(global_="SICONOS_GLOBAL_FRICTION_3D_NSN_AC", chunked=False),
 }
 
 
@@ -157,6 +160,10 @@ def main():
     P = fclib_arrays.read_problem(args.problem)
     if P["d"] != 3:
         result.update(status="unsupported", message="only 3D problems are compared")
+        print(json.dumps(result))
+        return 2
+    if P["kind"] == "local" and "local" not in spec:
+        result.update(status="unsupported", message=f"{args.solver} is a global (gfc3d) solver")
         print(json.dumps(result))
         return 2
     meter = fclib_arrays.ErrorMeter(P)

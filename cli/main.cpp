@@ -5,6 +5,7 @@
 //                 [--SETTING VALUE ...]
 //   fcsolve error FILE SOLUTION.hdf5 [--json]
 //   fcsolve solvers [--json]
+//   fcsolve check FILE [--json]   existence (Slater) check and diagnostics
 //   fcsolve run FILE... [--solvers a,b,...] [--tol 1e-8] [--max-time S]
 //   fcsolve bench PROBLEMS... [options]  /  fcsolve report DIR   (benchmark
 //                 campaigns: forwarded to the Python runner fcsolve.campaign)
@@ -14,6 +15,7 @@
 
 #include <fcsolve/core/error.hpp>
 #include <fcsolve/io/fclib.hpp>
+#include <fcsolve/nipm.hpp>
 #include <fcsolve/problem/summary.hpp>
 #include <fcsolve/solvers/catalog.hpp>
 
@@ -46,6 +48,8 @@ const char* kUsage =
     "      --history  --warm-start none|guess|solution  --SETTING VALUE (see `fcsolve solvers`)\n"
     "  error FILE SOLUTION.hdf5 [--json]        FCLIB error of a stored /solution (r [, v])\n"
     "  solvers [--json]                         list solvers and their settings\n"
+    "  check FILE [--json]                      existence check (Slater SOC program) and\n"
+    "                                           diagnostics: d nc / n, rank(H), cond(W)\n"
     "  run FILE... [--solvers a,b] [--tol X] [--max-time S]\n"
     "                                           solve many files, print a table\n"
     "  bench PROBLEMS... [--solvers all,siconos:nsgs] [--tol 1e-4,1e-8] [--timeout 20]\n"
@@ -364,6 +368,46 @@ int cmd_error(Args args) {
   return kExitSolved;
 }
 
+// ---------------------------------------------------------------- check
+
+/// Slater's assumption (ipm/existence_check.hpp) and cheap diagnostics.
+int cmd_check(Args args) {
+  const bool json = args.flag("json");
+  args.expect_no_more_options();
+  if (args.positional.size() != 1) throw UsageError("check takes exactly one FILE");
+  const std::string path = args.positional[0];
+  const fclib::Problem problem = fclib::read_problem(path);
+  const auto [ex, dg] = std::visit(
+      [](const auto& p) {
+        return std::make_pair(ipm::check_existence(p), ipm::diagnose(p));
+      },
+      problem);
+  const bool global = std::holds_alternative<GlobalProblem>(problem);
+  const char* verdict = ex.slater ? "solution-exists" : "not-established";
+  if (json) {
+    JsonWriter w;
+    w.begin_object().field("file", path).field("kind", global ? "global" : "local");
+    w.field("x_star", ex.x).field("slater", ex.slater).field("verdict", verdict);
+    w.field("witness_norm", ex.witness_norm).field("margin", ex.margin);
+    w.field("check_error", ex.solver_error).field("check_status", to_string(ex.info.status));
+    if (global) w.field("contact_ratio", dg.contact_ratio);
+    w.field(global ? "rank_H" : "rank_W", (long long)dg.rank_H).field("m", (long long)dg.columns_H);
+    w.field("lambda_min_W", dg.lambda_min_W).field("lambda_max_W", dg.lambda_max_W);
+    w.field("cond_W", dg.cond_W).field("asymmetry_W", dg.asymmetry_W);
+    w.end_object();
+    std::cout << w.str() << "\n";
+    return kExitSolved;
+  }
+  std::cout << "file=" << path << " x_star=" << fmt(ex.x, "%.6e") << " verdict=" << verdict
+            << " witness_norm=" << fmt(ex.witness_norm, "%.6e") << " margin=" << fmt(ex.margin, "%.6e")
+            << " check_status=" << to_string(ex.info.status) << "\n";
+  std::cout << (global ? "contact_ratio=" + fmt(dg.contact_ratio, "%.4g") + " rank_H=" : "rank_W=")
+            << dg.rank_H << "/" << dg.columns_H << " lambda_min_W=" << fmt(dg.lambda_min_W)
+            << " lambda_max_W=" << fmt(dg.lambda_max_W) << " cond_W=" << fmt(dg.cond_W)
+            << " asymmetry_W=" << fmt(dg.asymmetry_W) << "\n";
+  return kExitSolved;
+}
+
 // ---------------------------------------------------------------- solvers
 
 int cmd_solvers(Args args) {
@@ -548,6 +592,7 @@ int main(int argc, char** argv) {
     if (command == "info") return cmd_info(args);
     if (command == "solve") return cmd_solve(args);
     if (command == "solvers") return cmd_solvers(args);
+    if (command == "check") return cmd_check(args);
     if (command == "run") return cmd_run(args);
     if (command == "error") return cmd_error(args);
     if (command == "version" || command == "--version") {

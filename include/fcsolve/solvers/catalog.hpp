@@ -6,6 +6,7 @@
 
 #include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
+#include <fcsolve/solvers/ipm_entries.hpp>
 #include <fcsolve/solvers/newton_entries.hpp>
 #include <fcsolve/solvers/vi_entries.hpp>
 
@@ -19,6 +20,7 @@ inline const std::vector<SolverEntry>& entries() {
     add_nsgs_solvers(v);
     add_vi_solvers(v);
     add_newton_solvers(v);
+    add_ipm_solvers(v);
     return v;
   }();
   return all;

@@ -1,0 +1,84 @@
+// Cheap structural diagnostics of a problem, which the reference talk relates
+// to the robustness of the solvers ("the rank of H (~ ratio number of
+// contact unknowns / number of dofs) plays an important role"):
+//   contact-to-dof ratio c = d nc / n  (c > 1 forces a rank-deficient H),
+//   rank(H) from a column-pivoted sparse QR,
+//   the spectrum of the symmetric part of W = H^T M^-1 H (cond(W); zero
+//   eigenvalues when H is rank-deficient), and the asymmetry of W.
+#pragma once
+
+#include <fcsolve/problem/global_problem.hpp>
+#include <fcsolve/problem/local_problem.hpp>
+#include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/problem/symmetry.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseQR>
+
+#include <limits>
+
+namespace fcsolve {
+namespace ipm {
+
+struct ProblemDiagnostics {
+  double contact_ratio = std::numeric_limits<double>::quiet_NaN();  ///< d nc / n (global only)
+  Index rank_H = -1;           ///< estimated rank of H (global) or W (local); -1 not computed
+  Index columns_H = 0;         ///< m
+  double lambda_min_W = std::numeric_limits<double>::quiet_NaN();  ///< of (W + W^T) / 2
+  double lambda_max_W = std::numeric_limits<double>::quiet_NaN();
+  double cond_W = std::numeric_limits<double>::quiet_NaN();  ///< lambda_max / lambda_min (inf if <= 0)
+  double asymmetry_W = 0;      ///< ||W - W^T||_F / ||W||_F
+};
+
+/// Largest m for which the spectrum of W is computed (dense eigensolver).
+inline constexpr Index kDiagnosticsDenseLimit = 3000;
+
+namespace detail {
+
+inline Index sparse_rank(const SparseMatrix& A) {
+  // Column-pivoted QR of the taller orientation; Eigen's default threshold.
+  SparseMatrix B = A.rows() >= A.cols() ? A : SparseMatrix(A.transpose());
+  B.makeCompressed();
+  Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> qr(B);
+  return qr.info() == Eigen::Success ? Index(qr.rank()) : Index(-1);
+}
+
+inline void spectrum(const SparseMatrix& W, ProblemDiagnostics& d) {
+  d.asymmetry_W = relative_asymmetry(W);
+  if (W.rows() == 0 || W.rows() > kDiagnosticsDenseLimit) return;
+  const DenseMatrix S = DenseMatrix(symmetric_part(W));
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> es(S, Eigen::EigenvaluesOnly);
+  if (es.info() != Eigen::Success) return;
+  d.lambda_min_W = es.eigenvalues().minCoeff();
+  d.lambda_max_W = es.eigenvalues().maxCoeff();
+  d.cond_W = d.lambda_min_W > 0 ? d.lambda_max_W / d.lambda_min_W
+                                : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace detail
+
+template <class Backend = DefaultBackend>
+ProblemDiagnostics diagnose(const GlobalProblemView& p) {
+  ProblemDiagnostics d;
+  d.contact_ratio = double(p.d) * double(p.num_contacts()) / double(p.num_dofs());
+  d.columns_H = p.size();
+  d.rank_H = detail::sparse_rank(SparseMatrix(p.H));
+  if (p.size() <= kDiagnosticsDenseLimit) {
+    GlobalReduction<Backend> reduction(p);
+    detail::spectrum(reduction.local().W, d);
+  }
+  return d;
+}
+
+inline ProblemDiagnostics diagnose(const LocalProblemView& p) {
+  ProblemDiagnostics d;
+  d.columns_H = p.size();
+  const SparseMatrix W(p.W);
+  d.rank_H = detail::sparse_rank(W);
+  detail::spectrum(W, d);
+  return d;
+}
+
+}  // namespace ipm
+}  // namespace fcsolve

@@ -1,0 +1,425 @@
+// The primal-dual path-following engine shared by the convex SOCQP IPM, the
+// ACLM loops and the nonsmooth IPM (NIPM). It works on a Form (GlobalForm or
+// LocalForm: residuals, Newton matrix, back-substitution, error) and runs
+// Mehrotra's predictor-corrector (Mehrotra 1992) in the Jordan algebra of the
+// Lorentz cone with Nesterov-Todd scaling (Vandenberghe 2010, sec. 4-5):
+//   affine:    T^-1 dx + T dy = -lambda
+//   sigma   =  min(sigma_max, (mu_aff / mu)^3)
+//   combined:  T^-1 dx + T dy = lambda \ (sigma mu e - lambda o lambda - dxa~ o dya~)
+//   step    =  min(1, gamma * largest step keeping x, y in L)
+// With `coupled` the slack s is an unknown with s = ||x_T|| (the NIPM of the
+// reference talk, "NIPM - linearization"); otherwise s is frozen data (ACLM
+// 2011, problem (13)). Every iterate's error is the one core/error.hpp
+// defines (frozen-s natural map, or FCLIB when coupled): it alone decides
+// convergence, so a "fake solution" (tiny complementarity, large natural-map
+// error) is never reported as converged; the run also says when the talk's
+// stopping test would have stopped on one.
+#pragma once
+
+#include <fcsolve/core/solver_settings.hpp>
+#include <fcsolve/core/timer.hpp>
+#include <fcsolve/ipm/form_common.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace fcsolve {
+namespace ipm {
+
+struct IpmOptions {
+  double tol = 1e-8;
+  int max_iter = 100;
+  double max_time = std::numeric_limits<double>::infinity();
+  bool coupled = false;          ///< NIPM: s unknown with s = ||x_T||
+  double step_fraction = 0.99;   ///< fraction to the boundary gamma
+  double sigma_max = 1.0;        ///< upper bound on the centring parameter
+  int refinement = 2;            ///< iterative-refinement steps per solve
+  double regularization = 0.0;   ///< static delta I, relative to the diagonal of K
+  int stall_window = 12;         ///< iterations without a better error -> NoProgress
+  /// Below this error, stop (SlowProgress) once three iterations have not
+  /// halved it: a Newton polish finishes faster than the IPM's last steps,
+  /// which double precision slows down (0: never).
+  double slow_below = 0.0;
+  double fake_residual = 0.0;    ///< the talk's stopping tolerance to watch (0: tol)
+  double neighbourhood = 1e-3;   ///< eta: every contact keeps lambda_min(lambda)^2 >= eta mu
+  bool record_history = false;
+  IterationCallback callback;
+  int iteration_offset = 0;      ///< added to iteration numbers in callbacks
+};
+
+enum class IpmExit {
+  Converged,       ///< error <= tol
+  MaxIterations,
+  TimeLimit,
+  SmallStep,       ///< steps shrank to nothing: iterates stuck at the boundary
+  NoProgress,      ///< the best error did not improve for stall_window iterations
+  SlowProgress,    ///< error below slow_below and no longer halving: time to polish
+  NumericalError,  ///< NaN, or a factorisation that regularisation could not save
+  Stopped,         ///< the callback asked to stop
+};
+
+inline const char* to_string(IpmExit e) {
+  switch (e) {
+    case IpmExit::Converged: return "converged";
+    case IpmExit::MaxIterations: return "max-iterations";
+    case IpmExit::TimeLimit: return "timeout";
+    case IpmExit::SmallStep: return "small steps";
+    case IpmExit::NoProgress: return "no progress";
+    case IpmExit::SlowProgress: return "slow progress";
+    case IpmExit::NumericalError: return "numerical error";
+    case IpmExit::Stopped: return "stopped";
+  }
+  return "?";
+}
+
+struct IpmReport {
+  IpmExit exit = IpmExit::MaxIterations;
+  int iterations = 0;          ///< Newton steps taken
+  double error = 0;            ///< error of the returned (best) iterate
+  double mu = 0;               ///< x^T y / nc at the end
+  int factorizations = 0;
+  double factor_seconds = 0;   ///< time in assembling + factorising K
+  double seconds = 0;
+  int fake_iteration = -1;     ///< first iteration where the talk's test met tol with error > tol
+  double fake_error = 0;       ///< the error there
+  std::string note;            ///< why a NumericalError exit happened
+  std::vector<double> history;
+};
+
+template <class Form>
+class InteriorPoint {
+ public:
+  static constexpr int N = Form::dim;
+
+  explicit InteriorPoint(Form& form) : form_(form) {
+    const Index n = form.primal_size(), m = form.size(), nc = form.num_contacts();
+    state_.resize(nc);
+    d_.resize(n, m, nc);
+    best_.resize(n, m, nc);
+    r_d_.resize(n);
+    r_p_.resize(m);
+    rp_tilde_.resize(m);
+    r_s_.setZero(nc);
+    xi_.resize(m);
+    dxs_.resize(m);
+    dys_.resize(m);
+  }
+
+  /// Mehrotra's starting point adapted to L^N: the least-squares point of the
+  /// linear equations with T = theta I, each cone block shifted into int L by
+  /// a common amount (Mehrotra 1992, sec. 7). `it.s` holds the frozen s (or
+  /// the initial s when coupled; replaced by ||x_T|| then).
+  void cold_start(Iterate& it, bool coupled) {
+    const Index nc = form_.num_contacts();
+    it.v.setZero(form_.primal_size());
+    it.x.setZero(form_.size());
+    it.y.setZero(form_.size());
+    const double theta = form_.initial_scaling();
+    form_.residuals(it, r_d_, r_p_);
+    if (!form_.factorize_uniform(theta, regularization_delta(1e-12)))
+      form_.factorize_uniform(theta, regularization_delta(1e-8));
+    xi_.setZero();
+    form_.direction_uniform(theta, xi_, r_d_, r_p_, d_);
+    it.v = d_.v;
+    double dx = 0, dy = 0;
+    for (Index a = 0; a < nc; ++a) {
+      dx = std::max(dx, -1.5 * lorentz_min_eigenvalue<N>(d_.x.template segment<N>(a * N)));
+      dy = std::max(dy, -1.5 * lorentz_min_eigenvalue<N>(d_.y.template segment<N>(a * N)));
+    }
+    Vector xs = d_.x, ys = d_.y;
+    add_normal<N>(xs, Vector::Constant(nc, dx));
+    add_normal<N>(ys, Vector::Constant(nc, dy));
+    double trace_x = 0, trace_y = 0;
+    for (Index a = 0; a < nc; ++a) {
+      trace_x += xs[a * N];
+      trace_y += ys[a * N];
+    }
+    const double xy = xs.dot(ys);
+    if (xy > 0 && trace_x > 0 && trace_y > 0) {
+      dx += 0.5 * xy / trace_y;
+      dy += 0.5 * xy / trace_x;
+    }
+    // Degenerate data (q = 0, f = 0, ...): fall back on the balanced e, theta^2 e.
+    if (!(dx > 0)) dx = 1;
+    if (!(dy > 0)) dy = 1;
+    it.x = d_.x;
+    it.y = d_.y;
+    add_normal<N>(it.x, Vector::Constant(nc, dx));
+    add_normal<N>(it.y, Vector::Constant(nc, dy));
+    if (coupled)
+      for (Index a = 0; a < nc; ++a) it.s[a] = it.x.template segment<N - 1>(a * N + 1).norm();
+  }
+
+  /// Moves a (near-)boundary point into int L: every block gets at least
+  /// the smallest spectral value `min_x` (resp. `min_y`).
+  static void push_inside(Iterate& it, double min_x, double min_y) {
+    for (Index a = 0; a < it.s.size(); ++a) {
+      auto xa = it.x.template segment<N>(a * N);
+      auto ya = it.y.template segment<N>(a * N);
+      xa[0] += std::max(0.0, min_x - lorentz_min_eigenvalue<N>(xa));
+      ya[0] += std::max(0.0, min_y - lorentz_min_eigenvalue<N>(ya));
+    }
+  }
+
+  /// Runs the predictor-corrector from `it` (strictly interior). On return
+  /// `it` is the best iterate met (lowest error).
+  IpmReport run(Iterate& it, const IpmOptions& opt) {
+    Stopwatch clock;
+    IpmReport rep;
+    const Index nc = form_.num_contacts();
+    const bool coupled = opt.coupled;
+    const double fake_tol = opt.fake_residual > 0 ? opt.fake_residual : opt.tol;
+    double best_error = std::numeric_limits<double>::infinity();
+    int last_improvement = 0, small_steps = 0;
+    for (int k = 0;; ++k) {
+      form_.residuals(it, r_d_, r_p_);
+      if (coupled)
+        for (Index a = 0; a < nc; ++a)
+          r_s_[a] = it.s[a] - it.x.template segment<N - 1>(a * N + 1).norm();
+      const double err = form_.error(it, !coupled);
+      if (!std::isfinite(err)) {
+        rep.exit = IpmExit::NumericalError;
+        rep.note = "non-finite error";
+        break;
+      }
+      if (opt.record_history) rep.history.push_back(err);
+      if (err < best_error) {
+        best_error = err;
+        best_ = it;
+        last_improvement = k;
+      }
+      rep.iterations = k;
+      rep.mu = it.x.dot(it.y) / double(nc);
+      if (rep.fake_iteration < 0 && err > opt.tol && talk_residual(it) <= fake_tol) {
+        rep.fake_iteration = k;
+        rep.fake_error = err;
+      }
+      if (opt.callback) {
+        IterationInfo info{opt.iteration_offset + k, err, true, clock.seconds()};
+        if (!opt.callback(info)) {
+          rep.exit = IpmExit::Stopped;
+          break;
+        }
+      }
+      if (err <= opt.tol) {
+        rep.exit = IpmExit::Converged;
+        break;
+      }
+      if (k >= opt.max_iter) {
+        rep.exit = IpmExit::MaxIterations;
+        break;
+      }
+      if (clock.seconds() > opt.max_time) {
+        rep.exit = IpmExit::TimeLimit;
+        break;
+      }
+      if (k - last_improvement > opt.stall_window) {
+        rep.exit = IpmExit::NoProgress;
+        break;
+      }
+      recent_[std::size_t(k % 4)] = best_error;
+      if (k >= 3 && best_error < opt.slow_below && best_error > 0.5 * recent_[std::size_t((k - 3) % 4)]) {
+        rep.exit = IpmExit::SlowProgress;
+        break;
+      }
+      // NT scaling, the barrier parameter, the subgradient of ||x_T||.
+      bool interior = true;
+      for (Index a = 0; a < nc && interior; ++a) {
+        auto xa = it.x.template segment<N>(a * N);
+        auto ya = it.y.template segment<N>(a * N);
+        auto& sc = state_.scaling[std::size_t(a)];
+        if (!sc.compute(xa, ya)) {
+          // Rounding put the point on (or past) the boundary: the step kept
+          // it inside in exact arithmetic, so restore a tiny relative margin.
+          keep_inside(xa);
+          keep_inside(ya);
+          interior = sc.compute(xa, ya);
+        }
+      }
+      if (!interior) {
+        rep.exit = IpmExit::NumericalError;
+        rep.note = "an iterate reached the cone boundary in floating point";
+        break;
+      }
+      const double mu = it.x.dot(it.y) / double(nc);
+      if (coupled)
+        for (Index a = 0; a < nc; ++a) {
+          const auto xt = it.x.template segment<N - 1>(a * N + 1);
+          const double nt = xt.norm();
+          auto& na = state_.normal[std::size_t(a)];
+          na.setZero();
+          if (nt > 0) na.template tail<N - 1>() = xt / nt;
+        }
+      Stopwatch fclock;
+      bool ok = false;
+      for (int attempt = 0; attempt < 6 && !ok; ++attempt) {
+        const double rel = attempt == 0 ? opt.regularization
+                                        : std::max(opt.regularization, 1e-14) * std::pow(100.0, attempt);
+        ok = form_.factorize(state_, coupled, regularization_delta(rel));
+        ++rep.factorizations;
+      }
+      rep.factor_seconds += fclock.seconds();
+      if (!ok) {
+        rep.exit = IpmExit::NumericalError;
+        rep.note = "the Newton matrix could not be factorised, even regularised";
+        break;
+      }
+      rp_tilde_ = r_p_;
+      if (coupled) add_normal<N>(rp_tilde_, Vector(-r_s_));
+      // Predictor (affine scaling).
+      for (Index a = 0; a < nc; ++a) xi_.template segment<N>(a * N) = -lambda(a);
+      newton_direction(rp_tilde_, opt);
+      const double alpha_aff = std::min(1.0, max_step());
+      const double mu_aff =
+          (it.x + alpha_aff * d_.x).dot(it.y + alpha_aff * d_.y) / double(nc);
+      const double sigma = std::clamp(std::pow(std::max(mu_aff, 0.0) / mu, 3.0), 0.0, opt.sigma_max);
+      // Corrector (centring + second-order term).
+      for (Index a = 0; a < nc; ++a) {
+        const Vec<N> lam = lambda(a);
+        Vec<N> rc = -jordan::product<N>(lam, lam) -
+                    jordan::product<N>(Vec<N>(dxs_.template segment<N>(a * N)),
+                                       Vec<N>(dys_.template segment<N>(a * N)));
+        rc[0] += sigma * mu;
+        xi_.template segment<N>(a * N) = jordan_quotient<N>(lam, rc);
+      }
+      newton_direction(rp_tilde_, opt);
+      double alpha = std::min(1.0, opt.step_fraction * max_step());
+      alpha = centred_step(it, alpha, opt.neighbourhood);
+      if (!std::isfinite(alpha) || !(alpha > 0)) {
+        rep.exit = IpmExit::NumericalError;
+        rep.note = "no admissible step";
+        break;
+      }
+      if (form_.primal_size() > 0) it.v += alpha * d_.v;
+      it.x += alpha * d_.x;
+      it.y += alpha * d_.y;
+      if (coupled) it.s += alpha * d_.s;
+      small_steps = alpha < 1e-8 ? small_steps + 1 : 0;
+      if (small_steps >= 3) {
+        rep.iterations = k + 1;
+        rep.exit = IpmExit::SmallStep;
+        break;
+      }
+    }
+    it = best_;
+    rep.error = best_error;
+    rep.seconds = clock.seconds();
+    return rep;
+  }
+
+  /// dx for the data change w -> w + E p at the last factorisation (s
+  /// frozen): the derivative of the central point with respect to s, for
+  /// the ACLM Newton step. `r_d` is zero, xi = 0.
+  void frozen_sensitivity(const Vector& p, Vector& dx, int refinement) {
+    xi_.setZero();
+    r_d_.setZero();
+    rp_tilde_.setZero();
+    add_normal<N>(rp_tilde_, p);
+    form_.direction(state_, xi_, r_d_, rp_tilde_, d_, refinement);
+    dx = d_.x;
+  }
+
+  const ContactState<N>& state() const { return state_; }
+
+ private:
+  Vec<N> lambda(Index a) const { return state_.scaling[std::size_t(a)].lambda; }
+
+  /// z0 >= (1 + 1e-13) ||z1|| (and z0 > 0): a relative change at rounding level.
+  template <class Segment>
+  static void keep_inside(Segment&& z) {
+    const double nb = z.template tail<N - 1>().norm();
+    const double floor_value = std::max(nb * (1 + 1e-13), 1e-300);
+    if (z[0] < floor_value) z[0] = floor_value;
+  }
+
+  double regularization_delta(double relative) const {
+    return relative * form_.diagonal_scale();
+  }
+
+  void newton_direction(const Vector& rp_tilde, const IpmOptions& opt) {
+    form_.direction(state_, xi_, r_d_, rp_tilde, d_, opt.refinement);
+    const Index nc = form_.num_contacts();
+    if (opt.coupled)
+      for (Index a = 0; a < nc; ++a)
+        d_.s[a] = state_.normal[std::size_t(a)].dot(d_.x.template segment<N>(a * N)) - r_s_[a];
+    for (Index a = 0; a < nc; ++a) {
+      const auto& sc = state_.scaling[std::size_t(a)];
+      dxs_.template segment<N>(a * N) = sc.Tinv * d_.x.template segment<N>(a * N);
+      dys_.template segment<N>(a * N) = sc.T * d_.y.template segment<N>(a * N);
+    }
+  }
+
+  /// Largest alpha keeping lambda + alpha dx~ and lambda + alpha dy~ in L
+  /// (equivalently x + alpha dx, y + alpha dy: T is a cone automorphism).
+  double max_step() const {
+    double alpha = std::numeric_limits<double>::infinity();
+    for (Index a = 0; a < form_.num_contacts(); ++a) {
+      const Vec<N> lam = lambda(a);
+      alpha = std::min({alpha, max_step_in_cone<N>(lam, dxs_.template segment<N>(a * N)),
+                        max_step_in_cone<N>(lam, dys_.template segment<N>(a * N))});
+    }
+    return alpha;
+  }
+
+  /// Backtracks alpha until every contact stays in the wide neighbourhood
+  ///   lambda_min(lambda_a)^2 >= eta mu   (lambda_a the NT-scaled point)
+  /// of the central path. Off this neighbourhood x^T y can be small while
+  /// the spectral frames of x_a and y_a still differ by O(sqrt(mu)), which
+  /// is the natural-map error, instead of O(mu) (Monteiro & Tsuchiya 2000
+  /// for neighbourhoods of SOCP central paths). lambda_min(lambda) comes from
+  /// det(lambda)^2 = det x det y and lambda0^2 = (sqrt(det x det y) + x^T y)/2.
+  double centred_step(const Iterate& it, double alpha, double eta) const {
+    if (!(eta > 0)) return alpha;
+    // Never ask more than half the centrality the current point has.
+    const double now = centrality(it, 0.0);
+    const double target = std::min(eta, 0.5 * std::max(now, 0.0));
+    for (int trial = 0; trial < 30; ++trial, alpha *= 0.8)
+      if (centrality(it, alpha) >= target) return alpha;
+    return alpha;
+  }
+
+  /// min_a lambda_min(lambda_a)^2 / mu at x + alpha dx, y + alpha dy
+  /// (-1 outside the cone).
+  double centrality(const Iterate& it, double alpha) const {
+    const Index nc = form_.num_contacts();
+    double total = 0, worst = std::numeric_limits<double>::infinity();
+    for (Index a = 0; a < nc; ++a) {
+      const Vec<N> xa = it.x.template segment<N>(a * N) + alpha * d_.x.template segment<N>(a * N);
+      const Vec<N> ya = it.y.template segment<N>(a * N) + alpha * d_.y.template segment<N>(a * N);
+      const double xy = xa.dot(ya), dxy = lorentz_det<N>(xa) * lorentz_det<N>(ya);
+      total += xy;
+      if (!(dxy > 0) || !(xa[0] > 0) || !(ya[0] > 0)) return -1;
+      const double g = std::sqrt(dxy), l0 = std::sqrt(0.5 * (g + xy));
+      const double lmin = g / (l0 + std::sqrt(std::max(l0 * l0 - g, 0.0)));  // = l0 - ||l1||
+      worst = std::min(worst, lmin * lmin);
+    }
+    return total > 0 ? worst / (total / double(nc)) : -1;
+  }
+
+  /// The reference talk's stopping quantity
+  /// max(||r_p||inf, ||r_d||inf, ||r_s||inf, ||x o y||), in Lorentz units.
+  double talk_residual(const Iterate& it) const {
+    double comp = 0;
+    for (Index a = 0; a < form_.num_contacts(); ++a)
+      comp += jordan::product<N>(Vec<N>(it.x.template segment<N>(a * N)),
+                                 Vec<N>(it.y.template segment<N>(a * N)))
+                  .squaredNorm();
+    double res = std::sqrt(comp);
+    if (r_p_.size()) res = std::max(res, r_p_.cwiseAbs().maxCoeff());
+    if (r_d_.size()) res = std::max(res, r_d_.cwiseAbs().maxCoeff());
+    if (r_s_.size()) res = std::max(res, r_s_.cwiseAbs().maxCoeff());
+    return res;
+  }
+
+  Form& form_;
+  ContactState<N> state_;
+  Iterate d_, best_;
+  Vector r_d_, r_p_, rp_tilde_, r_s_, xi_, dxs_, dys_;
+  std::array<double, 4> recent_{};  // best error of the last iterations
+};
+
+}  // namespace ipm
+}  // namespace fcsolve

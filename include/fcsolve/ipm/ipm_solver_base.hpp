@@ -1,0 +1,188 @@
+// What the three interior-point solvers (SocqpIpm, AclmSolver,
+// NonsmoothIpm) share: settings, the form and its engine, validation, the
+// conversion of an iterate to (r, v) or (r, u), the natural-map polish, and
+// the translation of engine exits into a Status and a message.
+#pragma once
+
+#include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/solver_settings.hpp>
+#include <fcsolve/core/timer.hpp>
+#include <fcsolve/ipm/interior_point.hpp>
+#include <fcsolve/ipm/natural_map_polish.hpp>
+#include <fcsolve/problem/validate.hpp>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace fcsolve {
+namespace ipm {
+
+struct IpmSettings : SolverSettings {
+  IpmSettings() { max_iter = 100; }
+  double step_fraction = 0.99;  ///< fraction to the boundary
+  double sigma_max = 1.0;       ///< cap on Mehrotra's centring parameter
+  int refinement = 2;           ///< iterative-refinement steps per linear solve
+  double regularization = 0.0;  ///< static regularisation, relative to K's diagonal
+  double neighbourhood = 0.0;   ///< wide-neighbourhood parameter eta (0: off)
+  bool polish = true;           ///< finish with Newton steps on the natural map
+  int polish_iterations = 10;
+  /// Switch to the polish once the error is below this and the IPM stops
+  /// halving it every three iterations.
+  double polish_below = 1e-5;
+};
+
+inline std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2e", x);
+  return buf;
+}
+
+/// Where a solve spent its time (for benchmarks: the factorisation share).
+struct IpmStatistics {
+  int factorizations = 0;
+  double factor_seconds = 0;  ///< assembling + factorising Newton matrices
+};
+
+template <class Form>
+class IpmSolverBase {
+ public:
+  static constexpr int N = Form::dim;
+  using Cone = typename Form::Cone;
+
+  const SolverInfo& info() const { return info_; }
+  const IpmStatistics& statistics() const { return stats_; }
+  const Form& form() const { return *form_; }
+
+ protected:
+  /// Validates the problem, checks what the IPM supports, builds the form.
+  template <class View>
+  void compute_form(const View& p) {
+    Stopwatch clock;
+    validate(p);
+    if (p.d != N)
+      throw UsageError("interior-point solver compiled for d = " + std::to_string(N) +
+                       ", problem has d = " + std::to_string(p.d));
+    for (Index a = 0; a < p.num_contacts(); ++a)
+      if (!(p.mu[a] > 0))
+        throw UsageError("the interior-point solvers map each Coulomb cone onto the Lorentz cone "
+                         "and need mu > 0 (contact " + std::to_string(a) + " has mu = " +
+                         std::to_string(p.mu[a]) + ")");
+    if constexpr (Form::is_global)
+      if (p.has_bilateral())
+        throw UsageError("the global interior-point form has no bilateral constraints (G, b): "
+                         "solve the reduced problem instead");
+    form_ = std::make_unique<Form>();
+    form_->compute(p);
+    engine_ = std::make_unique<InteriorPoint<Form>>(*form_);
+    it_.resize(form_->primal_size(), form_->size(), form_->num_contacts());
+    info_ = SolverInfo();
+    info_.setup_seconds = clock.seconds();
+  }
+
+  void require_computed() const {
+    if (!form_) throw UsageError("interior-point solver: call compute(problem) before solve()");
+  }
+
+  /// Checks compute() was called and resets info() (keeping the setup time).
+  SolverInfo& begin_solve() {
+    require_computed();
+    stats_ = IpmStatistics();
+    const double setup = info_.setup_seconds;
+    info_ = SolverInfo();
+    info_.setup_seconds = setup;
+    return info_;
+  }
+
+  IpmOptions engine_options(const IpmSettings& s, bool coupled, double tol, int max_iter,
+                            double max_time) const {
+    IpmOptions o;
+    o.tol = tol;
+    o.max_iter = max_iter;
+    o.max_time = max_time;
+    o.coupled = coupled;
+    o.step_fraction = s.step_fraction;
+    o.sigma_max = s.sigma_max;
+    o.refinement = s.refinement;
+    o.regularization = s.regularization;
+    o.neighbourhood = s.neighbourhood;
+    o.slow_below = s.polish ? s.polish_below : 0.0;
+    o.record_history = s.record_history;
+    o.callback = s.callback;
+    return o;
+  }
+
+  /// r and v (global) or u = W r + q (local) of the iterate.
+  void extract(const Iterate& it, Vector& r, Vector& w) const {
+    form_->reaction(it, r);
+    if constexpr (Form::is_global) w = it.v;
+    else form_->velocity(it, w);
+  }
+
+  /// Newton on the natural map from (r, w); w is v (global) or u (local,
+  /// recomputed). `frozen`: the s of the convex problem, null for Coulomb.
+  PolishResult polish(const IpmSettings& s, Vector& r, Vector& w, const Vector* frozen,
+                      double target) {
+    using Backend = typename Form::Backend;
+    if constexpr (Form::is_global) {
+      return polish_global<N, Backend>(form_->view(), form_->error_scale(), w, r, frozen, target,
+                                       s.polish_iterations);
+    } else {
+      PolishResult res = polish_local<N, Backend>(form_->view(), r, frozen, target, s.polish_iterations);
+      w = form_->view().W * r + form_->view().q;
+      return res;
+    }
+  }
+
+  /// The FCLIB error of (r, w) (core/error.hpp), w = v (global) or u (local).
+  double fclib_error(const Vector& r, const Vector& w) const {
+    if constexpr (Form::is_global)
+      return global_error_report(form_->view(), form_->error_scale(), r, w).error;
+    else
+      return local_error_report(form_->view(), r).error;
+  }
+
+  static Status status_of(IpmExit e) {
+    switch (e) {
+      case IpmExit::Converged: return Status::Converged;
+      case IpmExit::MaxIterations: return Status::MaxIterations;
+      case IpmExit::TimeLimit: return Status::TimeLimit;
+      case IpmExit::NumericalError: return Status::NumericalError;
+      case IpmExit::Stopped: return Status::Stopped;
+      default: return Status::Stalled;
+    }
+  }
+
+  /// "IPM: 12 iterations (slow progress), error 3.1e-09" (+ the engine note
+  /// and a fake-solution warning when the talk's test was met too early).
+  static std::string describe(const char* what, const IpmReport& rep) {
+    std::string m = std::string(what) + ": " + std::to_string(rep.iterations) + " iterations (" +
+                    to_string(rep.exit) + "), error " + format_number(rep.error);
+    if (!rep.note.empty()) m += " [" + rep.note + "]";
+    if (rep.fake_iteration >= 0)
+      m += "; the published stopping test held at iteration " + std::to_string(rep.fake_iteration) +
+           " with error " + format_number(rep.fake_error) + " (a fake solution, not accepted)";
+    return m;
+  }
+  static std::string describe_polish(const PolishResult& p) {
+    return "Newton polish: " + std::to_string(p.iterations) + " steps, error " +
+           format_number(p.initial_error) + " -> " + format_number(p.error);
+  }
+
+  /// Runs the engine and accounts for its factorisations.
+  IpmReport run_engine(Iterate& it, const IpmOptions& opt) {
+    IpmReport rep = engine_->run(it, opt);
+    stats_.factorizations += rep.factorizations;
+    stats_.factor_seconds += rep.factor_seconds;
+    return rep;
+  }
+
+  std::unique_ptr<Form> form_;
+  std::unique_ptr<InteriorPoint<Form>> engine_;
+  Iterate it_;
+  SolverInfo info_;
+  IpmStatistics stats_;
+};
+
+}  // namespace ipm
+}  // namespace fcsolve

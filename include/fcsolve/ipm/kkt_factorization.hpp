@@ -1,0 +1,181 @@
+// Factorisation policies for the interior-point Newton matrices: a matrix
+// type K with a fixed pattern (its values change every iteration), a
+// symbolic analysis done once, and a numerical factorisation per iteration:
+// LDL^T without pivoting when K is symmetric (positive definite, or
+// quasi-definite [A B; B^T -C], A, C positive definite, which every
+// symmetric permutation factorises: Vanderbei, SIAM J. Optim. 5, 1995),
+// LU otherwise.
+//
+//   SparseKktFactorization<Backend>: CHOLMOD's simplicial LDL^T and UMFPACK
+//     with SuiteSparseBackend, Eigen's SimplicialLDLT and SparseLU with
+//     EigenBackend (KktSolvers below).
+//   DenseKktFactorization: Eigen::LDLT / PartialPivLU for small scenes, which
+//     must not pay for sparse machinery.
+//
+// Both store K in full (both triangles): LDL^T reads one, LU both, and the
+// assembly code does not depend on the choice.
+#pragma once
+
+#include <fcsolve/core/types.hpp>
+#include <fcsolve/linalg/eigen_backend.hpp>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+
+#ifdef FCSOLVE_WITH_CHOLMOD
+#include <fcsolve/linalg/suitesparse_backend.hpp>
+#endif
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+namespace fcsolve {
+namespace ipm {
+
+/// The sparse LDL^T and LU a linear-algebra backend offers for K. K is
+/// stored pre-permuted (SparseKktFactorization), so LDL^T runs in natural
+/// order.
+template <class Backend>
+struct KktSolvers {
+  using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>>;
+  using Lu = typename Backend::GeneralSolver;
+  static void configure(Ldlt&) {}
+  static void configure(Lu&) {}
+};
+#ifdef FCSOLVE_WITH_CHOLMOD
+template <>
+struct KktSolvers<SuiteSparseBackend> {
+  using Ldlt = Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper>;
+  using Lu = SuiteSparseBackend::GeneralSolver;
+  /// Natural order (K comes pre-permuted: CHOLMOD would otherwise form
+  /// P K P^T at every factorisation), and quiet: a failed factorisation is
+  /// an expected event here (the caller then regularises).
+  static void configure(Ldlt& s) {
+    s.cholmod().print = 0;
+    s.cholmod().nmethods = 1;
+    s.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    s.cholmod().postorder = 0;
+  }
+  /// No refinement inside UMFPACK's solve: KktSystem refines against the
+  /// unregularised matrix itself, and the polish is a Newton iteration.
+  static void configure(Lu& s) { s.umfpackControl()(UMFPACK_IRSTEP) = 0; }
+};
+#endif
+
+/// K in compressed columns, symmetrically permuted once by AMD (the
+/// ordering depends on the pattern only), so that every factorisation
+/// works on it in place.
+template <class Backend_>
+class SparseKktFactorization {
+ public:
+  using Backend = Backend_;
+  static constexpr bool is_dense = false;
+
+  /// Takes the pattern (values are overwritten before each factorisation).
+  void set_pattern(const SparseMatrix& pattern, bool symmetric) {
+    if (perm_.size() != pattern.rows()) {
+      Eigen::AMDOrdering<int> amd;
+      Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+      amd(pattern, inverse);  // row/column j of the permuted K is inverse(j) of K
+      perm_ = inverse.inverse();
+    }
+    K_ = pattern.twistedBy(perm_);
+    K_.makeCompressed();
+    symmetric_ = symmetric;
+    analysed_ = false;
+    sym_.reset();
+    gen_.reset();
+    pb_.resize(K_.rows());
+    px_.resize(K_.rows());
+  }
+  Index size() const { return K_.rows(); }
+  bool symmetric() const { return symmetric_; }
+  /// Position of entry (i, j) of K in values() (-1 if not in the pattern).
+  Index index_of(Index i, Index j) const {
+    const int pi = perm_.indices()[i], pj = perm_.indices()[j];
+    const int* inner = K_.innerIndexPtr();
+    const int* b = inner + K_.outerIndexPtr()[pj];
+    const int* e = inner + K_.outerIndexPtr()[pj + 1];
+    const int* it = std::lower_bound(b, e, pi);
+    return (it != e && *it == pi) ? Index(it - inner) : Index(-1);
+  }
+  double* values() { return K_.valuePtr(); }
+  Index num_values() const { return K_.nonZeros(); }
+
+  /// Numerical factorisation of the current values (symbolic analysis once).
+  bool factorize() {
+    if (symmetric_) return factorize_with(sym_);
+    return factorize_with(gen_);
+  }
+  void solve(const Vector& b, Vector& x) const {
+    pb_.noalias() = perm_ * b;
+    if (symmetric_) px_ = sym_->solve(pb_);
+    else px_ = gen_->solve(pb_);
+    x.noalias() = perm_.transpose() * px_;
+  }
+
+ private:
+  template <class Solver>
+  bool factorize_with(std::unique_ptr<Solver>& solver) {
+    if (!solver) {
+      solver = std::make_unique<Solver>();
+      KktSolvers<Backend>::configure(*solver);
+    }
+    if (!analysed_) solver->analyzePattern(K_);
+    analysed_ = true;
+    solver->factorize(K_);
+    return solver->info() == Eigen::Success;
+  }
+
+  SparseMatrix K_;  // P K P^T, kept alive: CHOLMOD and UMFPACK refer to it
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm_;
+  bool symmetric_ = true, analysed_ = false;
+  std::unique_ptr<typename KktSolvers<Backend>::Ldlt> sym_;
+  std::unique_ptr<typename KktSolvers<Backend>::Lu> gen_;
+  mutable Vector pb_, px_;
+};
+
+class DenseKktFactorization {
+ public:
+  using Backend = EigenBackend;  // for the few sparse solves around the IPM
+  static constexpr bool is_dense = true;
+
+  void set_pattern(const SparseMatrix& pattern, bool symmetric) {
+    K_.setZero(pattern.rows(), pattern.cols());
+    symmetric_ = symmetric;
+  }
+  Index size() const { return K_.rows(); }
+  bool symmetric() const { return symmetric_; }
+  Index index_of(Index i, Index j) const { return i + j * K_.rows(); }
+  double* values() { return K_.data(); }
+  Index num_values() const { return K_.size(); }
+
+  bool factorize() {
+    if (symmetric_) {
+      ldlt_.compute(K_);
+      if (ldlt_.info() != Eigen::Success) return false;
+      const auto d = ldlt_.vectorD().cwiseAbs();
+      return d.size() == 0 || d.minCoeff() > 1e-300 * std::max(1.0, d.maxCoeff());
+    }
+    lu_.compute(K_);
+    // PartialPivLU does not report singularity: check the pivots.
+    const auto d = lu_.matrixLU().diagonal().cwiseAbs();
+    return d.size() == 0 || d.minCoeff() > 1e-300 * std::max(1.0, d.maxCoeff());
+  }
+  void solve(const Vector& b, Vector& x) const {
+    if (symmetric_) x = ldlt_.solve(b);
+    else x = lu_.solve(b);
+  }
+
+ private:
+  DenseMatrix K_;
+  bool symmetric_ = true;
+  Eigen::LDLT<DenseMatrix> ldlt_;
+  Eigen::PartialPivLU<DenseMatrix> lu_;
+};
+
+}  // namespace ipm
+}  // namespace fcsolve

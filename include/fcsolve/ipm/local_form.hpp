@@ -1,0 +1,147 @@
+// The local (reduced) form of the interior-point Newton step, on
+// FC/II(W, q, mu): the unknowns are x, y (and s), the linear system is
+//   K = Ws + P^-1 T^2,   Ws = D^-1 W D^-1,
+// m x m with W's pattern plus the diagonal blocks: symmetric positive
+// definite when s is frozen and W symmetric positive semidefinite (Cholesky),
+// unsymmetric otherwise (LU). From (form_common.hpp)
+//   dx = Ws dy + E ds + r_p,  ds = n^T dx - r_s,  T^-1 dx + T dy = xi
+// follow dx = P (Ws dy + r~p) and  K dy = P^-1 T xi - r~p,  P^-1 = I - e n^T.
+// A rank-deficient W makes K singular in the limit (sticking contacts have
+// T -> 0): the static regularisation of KktSystem handles that.
+#pragma once
+
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/ipm/form_common.hpp>
+#include <fcsolve/ipm/kkt_system.hpp>
+#include <fcsolve/problem/local_problem.hpp>
+#include <fcsolve/problem/symmetry.hpp>
+
+#include <cmath>
+#include <optional>
+
+namespace fcsolve {
+namespace ipm {
+
+template <int N, class Factorization>
+class LocalForm {
+ public:
+  static constexpr int dim = N;
+  static constexpr bool is_global = false;
+  using Cone = CoulombCone<N>;
+  using Backend = typename Factorization::Backend;
+
+  void compute(const LocalProblemView& p) {
+    p_.emplace(p);
+    m_ = p.size();
+    nc_ = p.num_contacts();
+    Vector dinv = Vector::Ones(m_);
+    for (Index a = 0; a < nc_; ++a) dinv[a * N] = 1 / p.mu[a];
+    Ws_ = dinv.asDiagonal() * SparseMatrix(p.W) * dinv.asDiagonal();
+    Ws_.makeCompressed();
+    q0_ = dinv.cwiseProduct(Vector(p.q));
+    symmetric_data_ = relative_asymmetry(p.W) <= kSymmetryRoundoff;
+    SparseMatrix I(m_, m_);
+    I.setIdentity();
+    kkt_.compute(Ws_, I, symmetric_data_);
+    q_norm_ = p.q.norm();
+    const double tr = Ws_.diagonal().cwiseAbs().sum();
+    theta_ = tr > 0 ? std::sqrt(tr / double(m_)) : 1.0;
+    diag_scale_ = tr > 0 ? tr / double(m_) : 1.0;
+    r_.resize(m_);
+    u_.resize(m_);
+    rhs_.resize(m_);
+  }
+
+  const LocalProblemView& view() const { return *p_; }
+  Index primal_size() const { return 0; }
+  Index size() const { return m_; }
+  Index num_contacts() const { return nc_; }
+  const VectorMap& mu() const { return p_->mu; }
+  bool symmetric_data() const { return symmetric_data_; }
+  double initial_scaling() const { return theta_; }
+  /// Typical diagonal of K: the unit of the static regularisation.
+  double diagonal_scale() const { return diag_scale_; }
+  double error_scale() const { return q_norm_ > 0 ? q_norm_ : 1.0; }
+  KktSystem<N, Factorization>& kkt() { return kkt_; }
+
+  /// r_p = Ws y + q0 + E s - x (no r_d in this form).
+  void residuals(const Iterate& it, Vector& r_d, Vector& r_p) const {
+    r_d.resize(0);
+    r_p.noalias() = Ws_ * it.y;
+    r_p += q0_ - it.x;
+    add_normal<N>(r_p, it.s);
+  }
+
+  /// B_a = P_a^-1 T_a^2.
+  bool factorize(const ContactState<N>& cs, bool coupled, double delta) {
+    kkt_.set_symmetric(symmetric_data_ && !coupled);
+    auto& B = kkt_.blocks();
+    for (std::size_t a = 0; a < B.size(); ++a) {
+      const Mat<N>& T = cs.scaling[a].T;
+      B[a].noalias() = T * T;
+      if (coupled) {
+        const Eigen::Matrix<double, 1, N> row = cs.normal[a].transpose() * B[a];
+        B[a].row(0) -= row;
+      }
+    }
+    return kkt_.factorize(delta);
+  }
+
+  bool factorize_uniform(double theta, double delta) {
+    kkt_.set_symmetric(symmetric_data_);
+    for (auto& B : kkt_.blocks()) B = theta * theta * Mat<N>::Identity();
+    return kkt_.factorize(delta);
+  }
+
+  void direction(const ContactState<N>& cs, const Vector& xi, const Vector& /*r_d*/,
+                 const Vector& rp_tilde, Iterate& d, int refinement) {
+    for (Index a = 0; a < nc_; ++a) {
+      Vec<N> txi = cs.scaling[std::size_t(a)].T * xi.template segment<N>(a * N);
+      txi[0] -= cs.normal[std::size_t(a)].dot(txi);
+      rhs_.template segment<N>(a * N) = txi - rp_tilde.template segment<N>(a * N);
+    }
+    kkt_.solve(rhs_, d.y, refinement);
+    d.x.noalias() = Ws_ * d.y;
+    d.x += rp_tilde;
+    apply_coupling<N>(cs, d.x);
+  }
+
+  void direction_uniform(double theta, const Vector& xi, const Vector& /*r_d*/, const Vector& r_p,
+                         Iterate& d) {
+    rhs_ = theta * xi - r_p;
+    kkt_.solve(rhs_, d.y, 2);
+    d.x.noalias() = Ws_ * d.y;
+    d.x += r_p;
+  }
+
+  void reaction(const Iterate& it, Vector& r) const { reaction_from_lorentz<N>(it.y, p_->mu, r); }
+  /// u = W r + q for the reaction of `it`.
+  void velocity(const Iterate& it, Vector& u) const {
+    Vector r(m_);
+    reaction(it, r);
+    u.noalias() = p_->W * r;
+    u += p_->q;
+  }
+
+  /// FCLIB error ||F_nat|| / ||q|| (or with s frozen, see GlobalForm::error).
+  double error(const Iterate& it, bool frozen) {
+    reaction(it, r_);
+    u_.noalias() = p_->W * r_;
+    u_ += p_->q;
+    const double comp = natural_map_squared<N>(r_, u_, p_->mu, it.s, frozen);
+    return std::sqrt(comp) / error_scale();
+  }
+
+ private:
+  std::optional<LocalProblemView> p_;
+  Index m_ = 0, nc_ = 0;
+  SparseMatrix Ws_;
+  Vector q0_;
+  KktSystem<N, Factorization> kkt_;
+  bool symmetric_data_ = true;
+  double q_norm_ = 0, theta_ = 1, diag_scale_ = 1;
+  Vector r_, u_, rhs_;
+};
+
+}  // namespace ipm
+}  // namespace fcsolve
