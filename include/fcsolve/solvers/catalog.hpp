@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fcsolve/solvers/registry.hpp>
+#include <fcsolve/solvers/vi_entries.hpp>
 
 namespace fcsolve {
 namespace registry {
@@ -12,7 +13,8 @@ namespace registry {
 inline const std::vector<SolverEntry>& entries() {
   static const std::vector<SolverEntry> all = [] {
     std::vector<SolverEntry> v;
-    // Each solver family appends its entries here, e.g. add_nsgs_solvers(v);
+    // Each solver family appends its entries here.
+    add_vi_solvers(v);
     return v;
   }();
   return all;

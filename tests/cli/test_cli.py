@@ -1,0 +1,235 @@
+"""End-to-end checks of the `fcsolve` program against the independent
+reference shared/tools/fcref.py: `info` agrees on nc, m, n, nnz for every
+shared file, `error` agrees to 1e-10 relative on non-trivial (r, v), and
+every malformed input ends with exit code 2 and a message naming the file
+and the dataset, never a signal."""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SHARED = Path(os.environ.get("FCSOLVE_SHARED_DATA", ROOT.parent / "shared" / "data" / "fclib"))
+TOOLS = SHARED.parent.parent / "tools"
+BUNDLED = ROOT / "examples" / "data"
+CLI = os.environ.get("FCSOLVE_CLI", str(ROOT / "build" / "fcsolve"))
+
+have_shared = (SHARED / "local").is_dir() and (TOOLS / "fcref.py").is_file()
+needs_shared = pytest.mark.skipif(not have_shared, reason="../shared (FCLIB collection, fcref.py) absent")
+
+if have_shared:
+    sys.path.insert(0, str(TOOLS))
+    import fcref  # noqa: E402  the independent reference, used only to check
+
+
+def shared_files():
+    if not have_shared:
+        return []
+    return sorted(str(p) for p in SHARED.glob("*/*.hdf5"))
+
+
+def run(*args):
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=120)
+    assert p.returncode >= 0, f"fcsolve died from signal {-p.returncode}: {p.stderr}"
+    return p
+
+
+@needs_shared
+@pytest.mark.parametrize("path", shared_files(), ids=lambda p: Path(p).name)
+def test_info_agrees_with_fcref(path):
+    ref = fcref.load(path)
+    out = run("info", path, "--json")
+    assert out.returncode == 0, out.stderr
+    info = json.loads(out.stdout)
+    assert info["kind"] == ref["kind"]
+    assert info["nc"] == ref["mu"].size
+    assert info["d"] == ref["d"]
+    if ref["kind"] == "local":
+        assert info["m"] == ref["W"].shape[0]
+        assert info["nnz_W"] == ref["W"].nnz
+    else:
+        assert info["n"] == ref["M"].shape[0]
+        assert info["m"] == ref["H"].shape[1]
+        assert info["nnz_M"] == ref["M"].nnz
+        assert info["nnz_H"] == ref["H"].nnz
+    # the key=value line carries the same numbers
+    line = run("info", path).stdout
+    assert f"nc={info['nc']}" in line and f"m={info['m']}" in line
+
+
+def write_solution(path, r, v=None):
+    with h5py.File(path, "w") as f:
+        g = f.create_group("solution")
+        g["r"] = r
+        if v is not None:
+            g["v"] = v
+
+
+@needs_shared
+@pytest.mark.parametrize("path", shared_files(), ids=lambda p: Path(p).name)
+def test_error_agrees_with_fcref(path, tmp_path):
+    ref = fcref.load(path)
+    rng = np.random.default_rng(abs(hash(Path(path).name)) % 2**32)
+    m = ref["mu"].size * ref["d"]
+    cases = []
+    for k in range(3):
+        r = rng.normal(size=m)
+        r[0::3] = np.abs(r[0::3]) * (1 + k)  # mostly inside the cone
+        v = None
+        if ref["kind"] == "global":
+            v = rng.normal(size=ref["M"].shape[0]) if k == 2 else None
+        cases.append((r, v))
+    for i, (r, v) in enumerate(cases):
+        sol = tmp_path / f"sol{i}.hdf5"
+        write_solution(sol, r, v)
+        out = run("error", path, sol, "--json")
+        assert out.returncode == 0, out.stderr
+        mine = json.loads(out.stdout)["error"]
+        theirs = fcref.error(ref, r, v)
+        assert mine == pytest.approx(theirs, rel=1e-10, abs=1e-300), (i, mine, theirs)
+
+
+# --------------------------------------------------------------------- bad input
+
+def make_bad(tmp_path, name, edit, source="Rover1039.hdf5"):
+    path = tmp_path / f"{name}.hdf5"
+    path.write_bytes((BUNDLED / source).read_bytes())
+    with h5py.File(path, "r+") as f:
+        edit(f)
+    return path
+
+
+def replace(f, name, value):
+    del f[name]
+    f[name] = value
+
+
+BAD_CASES = {
+    "missing_q": (lambda f: f.__delitem__("fclib_local/vectors/q"), "fclib_local/vectors/q"),
+    "missing_W_x": (lambda f: f.__delitem__("fclib_local/W/x"), "fclib_local/W/x"),
+    "short_q": (lambda f: replace(f, "fclib_local/vectors/q", np.ones(5)), "fclib_local/vectors/q"),
+    "nan_q": (lambda f: replace(f, "fclib_local/vectors/q", np.r_[np.nan, np.ones(11)]), "fclib_local/vectors/q"),
+    "inf_W": (lambda f: replace(f, "fclib_local/W/x", np.r_[np.inf, np.ones(143)]), "fclib_local/W/x"),
+    "negative_mu": (lambda f: replace(f, "fclib_local/vectors/mu", np.array([0.7, -0.1, 0.7, 0.7])),
+                    "fclib_local/vectors/mu"),
+    "index_out_of_range": (lambda f: replace(f, "fclib_local/W/i", np.r_[np.int32(40), np.zeros(143, np.int32)]),
+                           "fclib_local/W/i"),
+    "bad_storage": (lambda f: replace(f, "fclib_local/W/nz", np.array([-7], np.int32)), "fclib_local/W/nz"),
+    "bad_spacedim": (lambda f: replace(f, "fclib_local/spacedim", np.array([9], np.int32)), "fclib_local/spacedim"),
+    "missing_group": (lambda f: f.move("fclib_local", "something_else"), ""),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_CASES))
+@pytest.mark.parametrize("command", ["info", "solve"])
+def test_malformed_file_exits_2_naming_file_and_dataset(tmp_path, case, command):
+    edit, dataset = BAD_CASES[case]
+    path = make_bad(tmp_path, case, edit)
+    args = ["info", path] if command == "info" else ["solve", path, "--solver", first_solver()]
+    out = run(*args)
+    assert out.returncode == 2, (out.stdout, out.stderr)
+    assert str(path) in out.stderr
+    assert dataset in out.stderr
+
+
+def first_solver():
+    listing = json.loads(run("solvers", "--json").stdout)
+    return listing[0]["name"] if listing else "nsgs"
+
+
+@pytest.mark.parametrize("content", [b"", b"not an hdf5 file\n", "truncated"])
+def test_unreadable_files_exit_2(tmp_path, content):
+    path = tmp_path / "broken.hdf5"
+    if content == "truncated":
+        data = (BUNDLED / "Capsules-i101-404.hdf5").read_bytes()
+        path.write_bytes(data[: len(data) // 2])
+    else:
+        path.write_bytes(content)
+    out = run("info", path)
+    assert out.returncode == 2
+    assert str(path) in out.stderr
+
+
+def test_missing_file_exits_2(tmp_path):
+    out = run("info", tmp_path / "nope.hdf5")
+    assert out.returncode == 2 and "nope.hdf5" in out.stderr
+
+
+@pytest.mark.parametrize("args", [
+    [],
+    ["frobnicate"],
+    ["info"],
+    ["info", "a.hdf5", "b.hdf5"],
+    ["info", str(BUNDLED / "Rover1039.hdf5"), "--bogus"],
+    ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "no-such-solver"],
+    ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--tol", "abc"],
+    ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--tol", "-1"],
+    ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--max-iter", "0"],
+])
+def test_bad_usage_exits_2(args):
+    out = run(*args)
+    assert out.returncode == 2, (args, out.stdout, out.stderr)
+    assert out.stderr.strip()
+
+
+def test_error_command_checks_solution_size(tmp_path):
+    sol = tmp_path / "short.hdf5"
+    write_solution(sol, np.zeros(5))
+    out = run("error", BUNDLED / "Rover1039.hdf5", sol)
+    assert out.returncode == 2 and "solution/r" in out.stderr
+
+
+def test_info_on_bundled_files():
+    for path in sorted(BUNDLED.glob("*.hdf5")):
+        out = run("info", path, "--json")
+        assert out.returncode == 0, out.stderr
+        info = json.loads(out.stdout)
+        assert info["m"] == 3 * info["nc"]
+
+
+def test_solve_writes_a_solution_fcref_accepts(tmp_path):
+    out_file = tmp_path / "sol.hdf5"
+    problem = BUNDLED / "Rover1039.hdf5"
+    out = run("solve", problem, "--solver", "vi-eg", "--tol", "1e-9", "--out", out_file, "--json")
+    assert out.returncode == 0, out.stderr
+    res = json.loads(out.stdout)
+    assert res["status"] == "converged" and res["error"] <= 1e-9
+    # the output is a complete FCLIB file: the problem plus /solution
+    again = run("error", out_file, out_file, "--json")
+    assert json.loads(again.stdout)["error"] == pytest.approx(res["error"], rel=1e-12)
+    if have_shared:
+        with h5py.File(out_file) as f:
+            r = np.asarray(f["solution/r"])
+        assert fcref.error(fcref.load(str(problem)), r) == pytest.approx(res["error"], rel=1e-10)
+
+
+def test_solve_exit_1_when_tolerance_not_reached():
+    out = run("solve", BUNDLED / "Capsules-i101-404.hdf5", "--solver", "vi-fp", "--max-iter", "3")
+    assert out.returncode == 1
+    assert "status=max-iterations" in out.stdout
+
+
+def test_solver_settings_are_typed():
+    problem = BUNDLED / "Rover1039.hdf5"
+    assert run("solve", problem, "--solver", "vi-eg", "--ratio-max", "0.8").returncode == 0
+    bad = run("solve", problem, "--solver", "vi-eg", "--ratio-max", "7")
+    assert bad.returncode == 2 and "ratio_max" in bad.stderr
+    unknown = run("solve", problem, "--solver", "vi-eg", "--omega", "1")
+    assert unknown.returncode == 2 and "omega" in unknown.stderr
+
+
+def test_global_solve_recovers_v(tmp_path):
+    out_file = tmp_path / "gsol.hdf5"
+    problem = BUNDLED / "Box_Stacks-i0035-31-0.hdf5"
+    out = run("solve", problem, "--solver", "vi-eg", "--out", out_file, "--json")
+    assert out.returncode == 0, out.stderr
+    with h5py.File(out_file) as f:
+        assert f["solution/v"].shape == (450,)
+        r, v = np.asarray(f["solution/r"]), np.asarray(f["solution/v"])
+    if have_shared:
+        assert fcref.error(fcref.load(str(problem)), r, v) <= 1e-8

@@ -1,0 +1,119 @@
+// VI projection solvers (fixed point, extragradient): closed-form one-contact
+// cases, real FCLIB problems, 2D and frictionless scenes, status reporting.
+// Every check uses the independent error of core/error.hpp.
+#include "test_support.hpp"
+
+#include <fcsolve/vi.hpp>
+
+#include <catch2/catch.hpp>
+
+using namespace fcsolve;
+
+namespace {
+
+LocalProblem one_contact(double mu, const Eigen::Vector3d& q) {
+  LocalProblem p;
+  p.W = DenseMatrix(Eigen::Vector3d(2, 1, 1).asDiagonal()).sparseView();
+  p.W.makeCompressed();
+  p.q = q;
+  p.mu = Vector::Constant(1, mu);
+  return p;
+}
+
+template <class Cone = Coulomb3D, class Storage = DenseStorage<Cone::dim>>
+std::pair<Vector, SolverInfo> run(const LocalProblemView& p, ProjectionVariant v, double tol = 1e-10,
+                                  int max_iter = 100000) {
+  ProjectedFixedPointSettings s;
+  s.variant = v;
+  s.tol = tol;
+  s.max_iter = max_iter;
+  ProjectedFixedPoint<Cone, Storage> solver(s);
+  solver.compute(p);
+  Vector r = Vector::Zero(p.size()), u(p.size());
+  const SolverInfo info = solver.solve(r, u);
+  return {r, info};
+}
+
+}  // namespace
+
+TEST_CASE("VI solvers find the closed-form one-contact solutions", "[vi]") {
+  for (auto v : {ProjectionVariant::FixedPoint, ProjectionVariant::ExtraGradient}) {
+    SECTION("take-off") {
+      auto [r, info] = run(one_contact(0.5, {1, 0.3, -0.2}), v);
+      CHECK(info.status == Status::Converged);
+      CHECK(r.norm() < 1e-12);
+    }
+    SECTION("sticking") {
+      auto [r, info] = run(one_contact(0.5, {-2, 0.1, 0.1}), v);
+      CHECK(info.status == Status::Converged);
+      CHECK((r - Eigen::Vector3d(1, -0.1, -0.1)).norm() < 1e-8);
+    }
+    SECTION("sliding") {
+      auto [r, info] = run(one_contact(0.5, {-2, 3, 0}), v);
+      CHECK(info.status == Status::Converged);
+      CHECK((r - Eigen::Vector3d(1, -0.5, 0)).norm() < 1e-8);
+    }
+  }
+}
+
+TEST_CASE("VI solvers converge on FCLIB problems (independent error)", "[vi][fclib]") {
+  for (const char* name : {"Rover1039.hdf5", "Confeti-ex03-Fc3D-SBM.hdf5", "FC3D_Example1.hdf5"}) {
+    INFO(name);
+    const LocalProblem p = fclib::read_local(fcsolve_test::bundled(name));
+    auto [r, info] = run<Coulomb3D, SparseStorage<3>>(p, ProjectionVariant::ExtraGradient, 1e-8);
+    REQUIRE(info.status == Status::Converged);
+    CHECK(local_error(p, r) <= 1e-8);
+    CHECK(info.error == Approx(local_error(p, r)).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("VI solvers on 2D and frictionless scenes", "[vi]") {
+  LocalProblem p;
+  DenseMatrix W(4, 4);
+  W << 2, 0.5, 0.3, 0, 0.5, 1, 0, 0.2, 0.3, 0, 2, 0.4, 0, 0.2, 0.4, 1;
+  p.W = W.sparseView();
+  p.W.makeCompressed();
+  p.q = Eigen::Vector4d(-1, 0.5, 0.3, -0.2);
+  p.d = 2;
+  p.mu = Vector::Constant(2, 0.4);
+  auto [r2, info2] = run<Coulomb2D>(p, ProjectionVariant::ExtraGradient);
+  CHECK(info2.status == Status::Converged);
+  CHECK(local_error(p, r2) <= 1e-10);
+  p.d = 1;
+  p.mu = Vector::Zero(4);
+  auto [r1, info1] = run<Frictionless>(p, ProjectionVariant::FixedPoint);
+  CHECK(info1.status == Status::Converged);
+  CHECK(local_error(p, r1) <= 1e-10);
+  // an LCP solution: r >= 0, u >= 0, r . u = 0
+  const Vector u = W * r1 + p.q;
+  CHECK(r1.minCoeff() >= 0);
+  CHECK(u.minCoeff() >= -1e-9);
+  CHECK(std::abs(r1.dot(u)) < 1e-9);
+}
+
+TEST_CASE("VI solver statuses: max iterations, callback stop, warm start", "[vi]") {
+  const LocalProblem p = fclib::read_local(fcsolve_test::bundled("Confeti-ex03-Fc3D-SBM.hdf5"));
+  auto [r, info] = run<Coulomb3D, SparseStorage<3>>(p, ProjectionVariant::FixedPoint, 1e-12, 5);
+  CHECK(info.status == Status::MaxIterations);
+  CHECK(info.iterations == 5);
+  CHECK(info.error > 1e-12);
+
+  ProjectedFixedPointSettings s;
+  s.callback = [](const IterationInfo& it) { return it.iteration < 3; };
+  ProjectedFixedPoint<Coulomb3D, SparseStorage<3>> solver(s);
+  solver.compute(p);
+  Vector r0 = Vector::Zero(p.size()), u(p.size());
+  CHECK(solver.solve(r0, u).status == Status::Stopped);
+  CHECK(solver.info().iterations == 3);
+
+  // a converged solution as warm start converges at once
+  auto [sol, info2] = run<Coulomb3D, SparseStorage<3>>(p, ProjectionVariant::ExtraGradient, 1e-8);
+  REQUIRE(info2.status == Status::Converged);
+  s.callback = nullptr;
+  ProjectedFixedPoint<Coulomb3D, SparseStorage<3>> warm(s);
+  warm.compute(p);
+  Vector rw = sol;
+  CHECK(warm.solve(rw, u).status == Status::Converged);
+  CHECK(warm.info().iterations == 0);
+  CHECK((u - (p.W * rw + p.q)).norm() < 1e-12);
+}
