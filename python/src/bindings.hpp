@@ -68,10 +68,10 @@ inline py::tuple csc_view(const SparseMatrix& A, py::handle owner) {
 
 /// A 1-D array of real numbers as an Eigen vector (copied); anything else
 /// (2-D, complex, strings, ...) throws InvalidProblem(field).
-Vector vector_argument(py::handle obj, const std::string& field);
+Vector vector_argument(py::handle obj, const char* field);
 
 /// The same, None giving an empty vector.
-inline Vector optional_vector_argument(py::handle obj, const std::string& field) {
+inline Vector optional_vector_argument(py::handle obj, const char* field) {
   return obj.is_none() ? Vector() : vector_argument(obj, field);
 }
 

@@ -152,8 +152,9 @@ std::string result_repr(const Result& r) {
 // ------------------------------------------------------------ callbacks, Ctrl-C
 
 /// The per-iteration hook a Python solve installs. It calls the user's
-/// callback (taking the GIL), and checks for Ctrl-C every
-/// kSignalCheckSeconds even without one, so a long solve can be interrupted.
+/// callback (taking the GIL), and without one checks for Ctrl-C every
+/// kSignalCheckSeconds (or 1024 iterations), so a long solve can be
+/// interrupted while short ones never take the GIL.
 /// A Python exception (KeyboardInterrupt, or one raised by the callback)
 /// stops the solve; it is raised again once the solver has returned.
 class PythonIterationHook {
@@ -165,9 +166,10 @@ class PythonIterationHook {
   bool operator()(const IterationInfo& it) {
     if (error_type_) return false;
     if (callback_.is_none()) {
-      const double now = clock_.seconds();
-      if (now < next_signal_check_) return true;
-      next_signal_check_ = now + kSignalCheckSeconds;
+      // it.seconds is the solver's own clock (no second clock read per
+      // iteration); the count covers a solver that leaves it at 0.
+      if (it.seconds < next_signal_check_ && (++calls_ & 1023) != 0) return true;
+      next_signal_check_ = it.seconds + kSignalCheckSeconds;
       py::gil_scoped_acquire gil;
       if (PyErr_CheckSignals() == 0) return true;
       keep_pending_error();
@@ -203,7 +205,7 @@ class PythonIterationHook {
   }
 
   py::object callback_;
-  fcsolve::Stopwatch clock_;
+  unsigned calls_ = 0;
   double next_signal_check_ = kSignalCheckSeconds;
   py::object error_type_, error_value_, error_trace_;
 };
@@ -299,12 +301,15 @@ py::list solver_list() {
 }
 
 /// Mean seconds of `repeats` registry::solve calls made from C++ with one
-/// prepared request: the baseline of bench/python_overhead.py.
+/// prepared request: the baseline of bench/python_overhead.py. With
+/// `with_callback`, a no-op per-iteration callback is installed (the Python
+/// path always has one, for Ctrl-C).
 double cpp_solve_seconds(const LocalProblemData& data, const std::string& solver, int repeats,
-                         double tol) {
+                         double tol, bool with_callback) {
   const SolverEntry& e = registry::find(solver);
   registry::SolveRequest request = registry::make_request(e);
   request.common.tol = tol;
+  if (with_callback) request.common.callback = [](const IterationInfo&) { return true; };
   const fcsolve::LocalProblemView view(data.problem);
   py::gil_scoped_release unlocked;
   fcsolve::Stopwatch clock;
@@ -416,7 +421,7 @@ void init_solvers(py::module_& m) {
   add_solve<GlobalProblemData>(m, "solve_global");
   m.def("solvers", &solver_list, "Every registered solver and its settings, as dicts.");
   m.def("_cpp_solve_seconds", &cpp_solve_seconds, "problem"_a, "solver"_a, "repeats"_a,
-        "tol"_a = 1e-8, "Benchmark baseline: mean seconds of registry::solve from C++.");
+        "tol"_a = 1e-8, "with_callback"_a = false, "Benchmark baseline: mean seconds of registry::solve from C++.");
 }
 
 }  // namespace fcsolve_py

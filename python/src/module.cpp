@@ -47,7 +47,7 @@ void translate(std::exception_ptr p) {
 
 }  // namespace
 
-Vector vector_argument(py::handle obj, const std::string& field) {
+Vector vector_argument(py::handle obj, const char* field) {
   const py::array a = py::array::ensure(obj);  // null (error cleared) if not array-like
   if (!a) throw InvalidProblem(field, "expected a 1-D array of real numbers");
   const char kind = a.dtype().kind();
