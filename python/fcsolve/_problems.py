@@ -4,7 +4,6 @@ import errno
 import operator
 import os
 from collections.abc import Mapping
-from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -75,6 +74,15 @@ class _Problem:
         obj._data = data
         return obj
 
+    def _matrix(self, name):
+        """The C++ matrix `name` as a csc_matrix view, built once (read-only
+        attribute: the problem's data cannot be replaced)."""
+        cache = self.__dict__.setdefault("_matrices", {})
+        if name not in cache:
+            arrays = getattr(self._data, name)
+            cache[name] = None if arrays is None else _csc_view(arrays)
+        return cache[name]
+
     d = property(lambda self: self._data.d, doc="Contact dimension: 3 (3D Coulomb), 2 or 1 (frictionless).")
     size = property(lambda self: self._data.size, doc="m = d * num_contacts, the number of contact unknowns.")
     num_contacts = property(lambda self: self._data.num_contacts, doc="Number of contacts nc.")
@@ -130,15 +138,11 @@ class LocalProblem(_Problem):
             d, _csc_arguments(W, "W"), q, _friction(mu, _length(q), d),
             title, description, math_info)
 
-    @cached_property
-    def W(self):
-        """(m, m) Delassus operator, scipy.sparse.csc_matrix over the C++ data (read-only)."""
-        return _csc_view(self._data.W)
+    W = property(lambda self: self._matrix("W"),
+                 doc="(m, m) Delassus operator: a scipy.sparse.csc_matrix over the problem's "
+                     "data (no copy; its arrays are read-only).")
 
-    @property
-    def q(self):
-        """(m,) free velocity (read-only view)."""
-        return self._data.q
+    q = property(lambda self: self._data.q, doc="(m,) free velocity (read-only view).")
 
     def error(self, r):
         """The FCLIB relative error of reactions r: ||r - P_K(r - u~)|| / ||q||
@@ -182,21 +186,12 @@ class GlobalProblem(_Problem):
             _friction(mu, _length(w), d), None if G is None else _csc_arguments(G, "G"), b,
             title, description, math_info)
 
-    @cached_property
-    def M(self):
-        """(n, n) mass matrix, scipy.sparse.csc_matrix over the C++ data (read-only)."""
-        return _csc_view(self._data.M)
-
-    @cached_property
-    def H(self):
-        """(n, m) contact operator, scipy.sparse.csc_matrix (read-only)."""
-        return _csc_view(self._data.H)
-
-    @cached_property
-    def G(self):
-        """(n, p) bilateral constraint matrix, or None."""
-        G = self._data.G
-        return None if G is None else _csc_view(G)
+    M = property(lambda self: self._matrix("M"),
+                 doc="(n, n) mass matrix: a scipy.sparse.csc_matrix over the problem's data.")
+    H = property(lambda self: self._matrix("H"),
+                 doc="(n, m) contact operator: a scipy.sparse.csc_matrix over the problem's data.")
+    G = property(lambda self: self._matrix("G"),
+                 doc="(n, p) bilateral constraint matrix (csc_matrix), or None.")
 
     f = property(lambda self: self._data.f, doc="(n,) external forces (read-only view).")
     w = property(lambda self: self._data.w, doc="(m,) contact velocity offset (read-only view).")

@@ -363,12 +363,13 @@ void init_solvers(py::module_& m) {
       })
       .def("__iter__", [](const Settings& s) { return py::iter(s.as_dict()); })
       .def("__len__", [](const Settings& s) { return s.entry->settings.size(); })
-      .def("keys", [](const Settings& s) { return s.as_dict().attr("keys")(); })
-      .def("items", [](const Settings& s) { return s.as_dict().attr("items")(); })
+      .def("keys", [](const Settings& s) { return s.as_dict().attr("keys")(); }, "The setting names.")
+      .def("items", [](const Settings& s) { return s.as_dict().attr("items")(); },
+           "(name, value) pairs.")
       .def("update", [](Settings& s, const py::kwargs& kwargs) { s.update(kwargs); },
            "Sets several values, each checked.")
       .def("as_dict", &Settings::as_dict, "The values, by name.")
-      .def("copy", [](const Settings& s) { return s; })
+      .def("copy", [](const Settings& s) { return s; }, "An independent copy.")
       .def("__repr__", [](const Settings& s) {
         std::string out = "fcsolve.Settings('" + s.entry->name + "'";
         for (auto [key, value] : s.as_dict())
@@ -401,20 +402,29 @@ void init_solvers(py::module_& m) {
         const Result& r = self.cast<const Result&>();
         return optional_view(r.outcome.lambda, r.outcome.lambda.size() > 0, self);
       }, "Bilateral multipliers lambda (problems with G; else None).")
-      .def_property_readonly("status", [](const Result& r) { return fcsolve::to_string(r.outcome.info.status); })
-      .def_property_readonly("converged", [](const Result& r) { return r.outcome.info.converged(); })
-      .def_property_readonly("iterations", [](const Result& r) { return r.outcome.info.iterations; })
-      .def_property_readonly("error", [](const Result& r) { return r.outcome.info.error; })
-      .def_property_readonly("seconds", [](const Result& r) { return r.outcome.seconds; })
-      .def_property_readonly("setup_seconds", [](const Result& r) { return r.outcome.info.setup_seconds; })
-      .def_property_readonly("solve_seconds", [](const Result& r) { return r.outcome.info.solve_seconds; })
+      .def_property_readonly("status", [](const Result& r) { return fcsolve::to_string(r.outcome.info.status); },
+                             "'converged', 'max-iterations', 'timeout', 'stalled', 'diverged', 'nan' or 'stopped'.")
+      .def_property_readonly("converged", [](const Result& r) { return r.outcome.info.converged(); },
+                             "True when status is 'converged': the recomputed error is <= tol.")
+      .def_property_readonly("iterations", [](const Result& r) { return r.outcome.info.iterations; },
+                             "Iterations done (sweeps, Newton steps...).")
+      .def_property_readonly("error", [](const Result& r) { return r.outcome.info.error; },
+                             "FCLIB error of the returned solution, recomputed from the problem's data.")
+      .def_property_readonly("seconds", [](const Result& r) { return r.outcome.seconds; },
+                             "Wall time of the whole call (validation, reduction, solve, error check).")
+      .def_property_readonly("setup_seconds", [](const Result& r) { return r.outcome.info.setup_seconds; },
+                             "Time in the solver's setup (factorisations, reduction).")
+      .def_property_readonly("solve_seconds", [](const Result& r) { return r.outcome.info.solve_seconds; },
+                             "Time in the solver's iterations.")
       .def_property_readonly("history", [](const Result& r) {
         const auto& h = r.outcome.info.history;
         return py::array_t<double>(static_cast<py::ssize_t>(h.size()), h.data());
-      })
-      .def_property_readonly("message", [](const Result& r) { return r.outcome.info.message; })
-      .def_property_readonly("solver", [](const Result& r) { return r.outcome.solver; })
-      .def_property_readonly("tol", [](const Result& r) { return r.tol; })
+      }, "Error after each iteration (solve(..., history=True); else empty).")
+      .def_property_readonly("message", [](const Result& r) { return r.outcome.info.message; },
+                             "What the solver did beyond iterating (fallbacks, regularisation...).")
+      .def_property_readonly("solver", [](const Result& r) { return r.outcome.solver; },
+                             "Name of the solver that ran.")
+      .def_property_readonly("tol", [](const Result& r) { return r.tol; }, "The tolerance asked for.")
       .def("__repr__", &result_repr);
 
   add_solve<LocalProblemData>(m, "solve_local");
