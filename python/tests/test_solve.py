@@ -149,8 +149,10 @@ def test_callback_returning_none_goes_on_and_exceptions_propagate(solver):
 def test_history(solver):
     P = fcsolve.load(data_file("FC3D_Example1.hdf5"))
     res = fcsolve.solve(P, solver, tol=1e-8, history=True)
-    assert len(res.history) == res.iterations > 0
-    assert np.isfinite(res.history).all()
+    # one entry per iteration at most (a solver may record an estimate, or
+    # skip the sweep in which it checks the full error)
+    assert 0 < len(res.history) <= res.iterations
+    assert np.isfinite(res.history).all() and (res.history >= 0).all()
     assert len(fcsolve.solve(P, solver, tol=1e-8).history) == 0
 
 
