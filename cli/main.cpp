@@ -6,6 +6,8 @@
 //   fcsolve error FILE SOLUTION.hdf5 [--json]
 //   fcsolve solvers [--json]
 //   fcsolve run FILE... [--solvers a,b,...] [--tol 1e-8] [--max-time S]
+//   fcsolve bench PROBLEMS... [options]  /  fcsolve report DIR   (benchmark
+//                 campaigns: forwarded to the Python runner fcsolve.campaign)
 // Exit codes: 0 solved (or command done), 1 tolerance not reached, 2 bad input
 // or usage (message on stderr), 3 internal error.
 #include "json_writer.hpp"
@@ -15,7 +17,12 @@
 #include <fcsolve/problem/summary.hpp>
 #include <fcsolve/solvers/catalog.hpp>
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -41,6 +48,9 @@ const char* kUsage =
     "  solvers [--json]                         list solvers and their settings\n"
     "  run FILE... [--solvers a,b] [--tol X] [--max-time S]\n"
     "                                           solve many files, print a table\n"
+    "  bench PROBLEMS... [--solvers all,siconos:nsgs] [--tol 1e-4,1e-8] [--timeout 20]\n"
+    "        [--out DIR] [--jobs N] [--dask ADDRESS] [--report]   benchmark campaign (CSV)\n"
+    "  report DIR                               charts and HTML page of a campaign\n"
     "  version                                  print the version\n"
     "exit codes: 0 solved, 1 tolerance not reached, 2 bad input or usage\n";
 
@@ -467,6 +477,63 @@ int cmd_run(Args args) {
   return kExitSolved;
 }
 
+// ---------------------------------------------------------------- bench, report
+
+bool is_file(const std::string& path) { return access(path.c_str(), R_OK) == 0; }
+
+/// This program's own path, so that the campaign runs the same binary.
+std::string self_path(const char* argv0) {
+  char buf[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n > 0) return std::string(buf, static_cast<std::size_t>(n));
+  char* real = realpath(argv0, nullptr);
+  std::string out = real ? real : argv0;
+  std::free(real);
+  return out;
+}
+
+/// The campaign package: $FCSOLVE_CAMPAIGN_DIR, else the installed copy
+/// (BINDIR/../share/fcsolve/python/fcsolve/campaign), else the source tree
+/// this binary was built from.
+std::string campaign_dir(const std::string& self) {
+  if (const char* env = std::getenv("FCSOLVE_CAMPAIGN_DIR"); env && *env) return env;
+  const std::string bindir = self.substr(0, self.find_last_of('/'));
+  const std::string candidates[] = {
+#ifdef FCSOLVE_CAMPAIGN_RELATIVE_DIR
+      bindir + "/" + FCSOLVE_CAMPAIGN_RELATIVE_DIR,
+#endif
+#ifdef FCSOLVE_CAMPAIGN_SOURCE_DIR
+      FCSOLVE_CAMPAIGN_SOURCE_DIR,
+#endif
+  };
+  for (const auto& dir : candidates)
+    if (is_file(dir + "/__main__.py")) return dir;
+  throw UsageError("the campaign runner (python/fcsolve/campaign) is not installed; set "
+                   "FCSOLVE_CAMPAIGN_DIR to its folder");
+}
+
+/// `fcsolve bench|report ...` runs the pure-Python campaign runner by path
+/// (no `import fcsolve`, so no compiled extension needed) with
+/// $FCSOLVE_PYTHON (default /usr/bin/python3, Debian's numpy, scipy, h5py,
+/// matplotlib), telling it this binary's path. Replaces this process.
+int cmd_campaign(const std::string& command, int argc, char** argv) {
+  const std::string self = self_path(argv[0]);
+  const std::string script = campaign_dir(self) + "/__main__.py";
+  const char* env_python = std::getenv("FCSOLVE_PYTHON");
+  const std::string python = env_python && *env_python ? env_python : "/usr/bin/python3";
+  setenv("FCSOLVE_CLI", self.c_str(), 1);
+  std::vector<std::string> words = {python, script, command};
+  for (int k = 2; k < argc; ++k) words.emplace_back(argv[k]);
+  std::vector<char*> args;
+  for (auto& w : words) args.push_back(w.data());
+  args.push_back(nullptr);
+  std::cout.flush();
+  execv(python.c_str(), args.data());
+  std::cerr << "fcsolve: cannot run " << python << " (" << std::strerror(errno)
+            << "); set FCSOLVE_PYTHON to a Python with numpy, scipy, h5py and matplotlib\n";
+  return kExitInternal;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -476,6 +543,7 @@ int main(int argc, char** argv) {
   }
   const std::string command = argv[1];
   try {
+    if (command == "bench" || command == "report") return cmd_campaign(command, argc, argv);
     Args args = Args::parse(argc, argv, 2);
     if (command == "info") return cmd_info(args);
     if (command == "solve") return cmd_solve(args);

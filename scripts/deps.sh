@@ -11,7 +11,8 @@ packages=(
   libeigen3-dev libsuitesparse-dev libopenblas-dev libhdf5-dev
   catch2 libbenchmark-dev pybind11-dev
   python3-dev python3-venv python3-pip python3-numpy python3-scipy python3-h5py python3-pytest
-  python3-matplotlib
+  python3-matplotlib                    # campaign reports (fcsolve report)
+  python3-dask python3-distributed      # campaigns on a Dask cluster (fcsolve bench --dask)
 )
 if [[ "${1:-}" == "--peers" ]]; then
   packages+=(python3-siconos)

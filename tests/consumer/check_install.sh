@@ -10,3 +10,8 @@ cmake -S "$src/tests/consumer" -B "$scratch/build" -G Ninja -DCMAKE_BUILD_TYPE=R
       -DCMAKE_PREFIX_PATH="$scratch/prefix" -DCMAKE_CXX_COMPILER_LAUNCHER= >/dev/null
 cmake --build "$scratch/build" >/dev/null
 "$scratch/build/consumer" "$src/examples/data/Rover1039.hdf5"
+# The installed CLI reaches its installed campaign runner (fcsolve bench/report).
+if [[ -x "$scratch/prefix/bin/fcsolve" ]]; then
+  test -f "$scratch/prefix/share/fcsolve/python/fcsolve/campaign/__main__.py"
+  "$scratch/prefix/bin/fcsolve" bench --help | grep -q -- "--solvers"
+fi
