@@ -311,3 +311,61 @@ def test_info():
     G = fcsolve.load(data_file("LMGC_GlobalFrictionContactProblem00046.hdf5")).info()
     assert G["kind"] == "global" and G["n"] == 162 and G["asymmetry_M"] > 0
     assert "LocalProblem" in repr(P)
+
+
+# ---------------------------------------------------------------- existence check, diagnostics
+
+needs_checks = pytest.mark.skipif(
+    not hasattr(fcsolve, "check_existence"),
+    reason="this build has no existence check / diagnostics (interior-point family absent)")
+
+
+@needs_checks
+@pytest.mark.parametrize("name", ["Capsules-i101-404.hdf5", "Box_Stacks-i0035-31-0.hdf5",
+                                  "CubeH8.hdf5"])
+def test_existence_check_gives_a_certificate(name):
+    P = fcsolve.load(data_file(name))
+    rep = fcsolve.check_existence(P)
+    assert rep["slater"] and rep["verdict"] == "solution-exists" and rep["x_star"] > 0
+    # the witness is a certificate, checked here: u = H^T v + w (W r + q) is
+    # strictly inside every dual cone K* = {u_N >= mu ||u_T||}
+    witness = rep["witness"]
+    if isinstance(P, fcsolve.GlobalProblem):
+        u = P.H.T @ witness + P.w
+    else:
+        u = P.W @ witness + P.q
+    U = u.reshape(-1, 3)
+    margin = U[:, 0] - P.mu * np.linalg.norm(U[:, 1:], axis=1)
+    assert margin.min() > 0
+    assert margin.min() == pytest.approx(rep["margin"], rel=1e-6)
+    assert rep["witness_norm"] == pytest.approx(np.linalg.norm(witness))
+
+
+@needs_checks
+def test_existence_check_without_a_slater_point():
+    # W has no normal coupling: u_N = q_N = -1 for every r, never inside K*
+    P = fcsolve.LocalProblem(np.diag([0.0, 1.0, 1.0]), [-1.0, 0.0, 0.0], [0.5])
+    rep = fcsolve.check_existence(P)
+    assert not rep["slater"] and rep["verdict"] == "not-established"
+    with pytest.raises(fcsolve.UsageError, match="friction"):
+        fcsolve.check_existence(fcsolve.LocalProblem(np.eye(2), [1.0, 2.0], [0, 0], d=1))
+    with pytest.raises(TypeError):
+        fcsolve.check_existence("not a problem")
+
+
+@needs_checks
+def test_diagnostics():
+    G = fcsolve.load(data_file("Box_Stacks-i0035-31-0.hdf5"))
+    d = G.diagnostics()
+    assert d["contact_ratio"] == pytest.approx(G.size / G.num_dofs)
+    assert d["rank_H"] == d["m"] == G.size  # H has full column rank here
+    W = G.reduce().W
+    eig = np.linalg.eigvalsh(((W + W.T) / 2).toarray())
+    assert d["lambda_min_W"] == pytest.approx(eig.min(), rel=1e-8)
+    assert d["lambda_max_W"] == pytest.approx(eig.max(), rel=1e-8)
+    assert d["cond_W"] == pytest.approx(eig.max() / eig.min(), rel=1e-8)
+    P = fcsolve.load(data_file("Capsules-i101-404.hdf5"))
+    d = P.diagnostics()
+    assert 0 < d["rank_W"] < d["m"] == P.size  # more contact unknowns than dofs behind W
+    assert d["asymmetry_W"] == pytest.approx(P.info()["asymmetry_W"])
+    assert "contact_ratio" not in d
