@@ -240,7 +240,11 @@ fcsolve::SolverSettings common_settings(const SolverEntry& e, double tol, py::ha
     common.max_iter = int(n);
   }
   if (!max_time.is_none()) {
-    const double t = max_time.cast<double>();
+    const double t = is_python_bool(max_time) ? -1.0 : PyFloat_AsDouble(max_time.ptr());
+    if (t == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      throw py::type_error("max_time must be a number of seconds or None");
+    }
     if (!(t > 0)) throw UsageError("max_time must be positive (seconds) or None");
     common.max_time = t;
   }

@@ -259,6 +259,8 @@ def test_bad_solve_arguments():
         fcsolve.solve(P, name, max_iter=1.5)
     with pytest.raises(ValueError, match="max_time"):
         fcsolve.solve(P, name, max_time=0)
+    with pytest.raises(TypeError, match="max_time"):
+        fcsolve.solve(P, name, max_time="10")
     with pytest.raises(TypeError, match="callback"):
         fcsolve.solve(P, name, callback=3)
     with pytest.raises(ValueError, match="global"):
