@@ -11,7 +11,8 @@ friction, the reduced problem FC/II (W, q, mu) and the global problem FC/I
 
 Problems: LocalProblem(W, q, mu, d=3), GlobalProblem(M, H, f, w, mu, G, b, d=3),
 load(path), save(path, problem, solution, guesses), load_solution, load_guesses;
-problem.error(r), problem.info(), GlobalProblem.reduce().
+problem.error(r), problem.info(), problem.diagnostics(), check_existence(problem),
+GlobalProblem.reduce().
 Solving: solve(problem, solver, tol, ...) -> Result; solvers(); solver(name);
 Settings(name, **values) for typed, reusable solver settings.
 Errors: InvalidProblemError and UsageError (ValueError), FclibError (OSError).
@@ -35,7 +36,15 @@ from ._fcsolve import (
     UsageError,
     __version__,
 )
-from ._problems import GlobalProblem, LocalProblem, load, load_guesses, load_solution, save
+from ._problems import (
+    GlobalProblem,
+    LocalProblem,
+    check_existence,
+    load,
+    load_guesses,
+    load_solution,
+    save,
+)
 from ._solve import SettingSpec, SolverSpec, solve, solver, solvers
 
 for _cls in (Result, Settings):
@@ -53,6 +62,7 @@ __all__ = [
     "SolverSpec",
     "UsageError",
     "__version__",
+    "check_existence",
     "load",
     "load_guesses",
     "load_solution",

@@ -98,6 +98,16 @@ class _Problem:
         same fields as `fcsolve info FILE --json`."""
         return self._data.summary()
 
+    def diagnostics(self):
+        """Structural diagnostics that bear on solver robustness, as a dict:
+        rank of H (global: rank_H, with contact_ratio = d nc / n; c > 1 forces
+        a rank-deficient H) or of W (local: rank_W), m, the extreme
+        eigenvalues and condition number of the symmetric part of W
+        (lambda_min_W, lambda_max_W, cond_W; NaN when m > 3000) and the
+        relative asymmetry of W. A global problem is reduced to get W.
+        NotImplementedError if this build lacks the interior-point family."""
+        return _interior_point_tool("diagnostics")(self._data)
+
     def solve(self, solver="nsgs", **options):
         """Shorthand for fcsolve.solve(self, solver, **options)."""
         from ._solve import solve
@@ -295,3 +305,34 @@ def load_solution(path):
 def load_guesses(path):
     """The /guesses groups of an FCLIB file: a list of dicts {r, u, v, l}."""
     return _fcsolve.read_guesses(os.fspath(path))
+
+
+def _interior_point_tool(name):
+    """A compiled function of the interior-point family (existence check,
+    diagnostics), present when the library has that family."""
+    try:
+        return getattr(_fcsolve, name)
+    except AttributeError:
+        raise NotImplementedError(
+            f"{name} needs the interior-point family (fcsolve/ipm), which this build of "
+            "fcsolve does not have") from None
+
+
+def check_existence(problem, tol=1e-10):
+    """Numerical check of the existence assumption (Acary & Cadoux 2013;
+    Acary, Cadoux, Lemarechal & Malick 2011, Thm 3.3): is there v with
+    H^T v + w strictly inside the dual cones K* (for a LocalProblem: r with
+    W r + q inside K*)? If so, the problem has a solution.
+
+    Solves a homogenised second-order-cone program with the interior-point
+    method, then checks the witness it finds directly. Returns a dict:
+    slater (True: a solution exists), verdict ('solution-exists' or
+    'not-established'), x_star (optimal value of the program, > 0 iff the
+    assumption holds), witness (v, or r for a local problem), witness_norm,
+    margin (min over contacts of u_N - mu ||u_T|| at the witness), and the
+    program's own check_error, check_status, check_iterations. Needs
+    friction cones (d = 2 or 3). NotImplementedError if this build lacks the
+    interior-point family."""
+    if not isinstance(problem, _Problem):
+        raise TypeError("problem must be an fcsolve.LocalProblem or fcsolve.GlobalProblem")
+    return _interior_point_tool("check_existence")(problem._data, tol)

@@ -1,11 +1,18 @@
 // The solver catalogue seen from Python: every registered entry, its typed
-// settings, solve() with the GIL released, callbacks and Ctrl-C. The only
-// translation unit that includes solvers/catalog.hpp (it instantiates every
-// solver).
+// settings, solve() with the GIL released, callbacks and Ctrl-C; and the
+// interior-point family's existence check and diagnostics when the library
+// has them. The only translation unit that includes solvers/catalog.hpp (it
+// instantiates every solver, the interior-point ones the check reuses).
 #include "bindings.hpp"
 
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/solvers/catalog.hpp>
+
+#if __has_include(<fcsolve/ipm/existence_check.hpp>) && __has_include(<fcsolve/ipm/diagnostics.hpp>)
+#include <fcsolve/ipm/diagnostics.hpp>
+#include <fcsolve/ipm/existence_check.hpp>
+#define FCSOLVE_PY_EXISTENCE_CHECK 1
+#endif
 
 #include <pybind11/stl.h>
 
@@ -335,6 +342,54 @@ double cpp_solve_seconds(const LocalProblemData& data, const std::string& solver
   return sink >= 0 ? seconds : -seconds;  // keeps the loop from being optimised away
 }
 
+// ------------------------------------------------------------ existence, diagnostics
+
+#ifdef FCSOLVE_PY_EXISTENCE_CHECK
+
+template <class Data>
+py::dict existence_dict(const Data& data, double tol) {
+  fcsolve::ipm::ExistenceReport rep;
+  {
+    py::gil_scoped_release unlocked;
+    rep = fcsolve::ipm::check_existence(data.problem, tol);
+  }
+  return py::dict("slater"_a = rep.slater,
+                  "verdict"_a = rep.slater ? "solution-exists" : "not-established",
+                  "x_star"_a = rep.x, "margin"_a = rep.margin,
+                  "witness"_a = py::array_t<double>(rep.witness.size(), rep.witness.data()),
+                  "witness_norm"_a = rep.witness_norm, "check_error"_a = rep.solver_error,
+                  "check_status"_a = fcsolve::to_string(rep.info.status),
+                  "check_iterations"_a = rep.info.iterations);
+}
+
+template <class Data>
+py::dict diagnostics_dict(const Data& data) {
+  constexpr bool global = std::is_same_v<Data, GlobalProblemData>;
+  fcsolve::ipm::ProblemDiagnostics d;
+  {
+    py::gil_scoped_release unlocked;
+    d = fcsolve::ipm::diagnose(data.problem);
+  }
+  py::dict out;
+  if (global) out["contact_ratio"] = d.contact_ratio;
+  out[global ? "rank_H" : "rank_W"] = d.rank_H;
+  out["m"] = d.columns_H;
+  out["lambda_min_W"] = d.lambda_min_W;
+  out["lambda_max_W"] = d.lambda_max_W;
+  out["cond_W"] = d.cond_W;
+  out["asymmetry_W"] = d.asymmetry_W;
+  return out;
+}
+
+template <class Data>
+void add_checks(py::module_& m) {
+  m.def("check_existence", &existence_dict<Data>, "problem"_a, "tol"_a = 1e-10,
+        "Slater's assumption by the SOC program of Acary & Cadoux 2013 (see fcsolve.check_existence).");
+  m.def("diagnostics", &diagnostics_dict<Data>, "problem"_a,
+        "Rank of H (or W), spectrum and asymmetry of W (see Problem.diagnostics).");
+}
+#endif  // FCSOLVE_PY_EXISTENCE_CHECK
+
 template <class Data>
 void add_solve(py::module_& m, const char* name) {
   m.def(name, &solve<Data>, "problem"_a, "solver"_a, "tol"_a, "max_iter"_a, "max_time"_a, "r0"_a,
@@ -445,6 +500,10 @@ void init_solvers(py::module_& m) {
 
   add_solve<LocalProblemData>(m, "solve_local");
   add_solve<GlobalProblemData>(m, "solve_global");
+#ifdef FCSOLVE_PY_EXISTENCE_CHECK
+  add_checks<LocalProblemData>(m);
+  add_checks<GlobalProblemData>(m);
+#endif
   m.def("solvers", &solver_list, "Every registered solver and its settings, as dicts.");
   m.def("_cpp_solve_seconds", &cpp_solve_seconds, "problem"_a, "solver"_a, "repeats"_a,
         "tol"_a = 1e-8, "with_callback"_a = false, "Benchmark baseline: mean seconds of registry::solve from C++.");

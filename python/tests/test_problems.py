@@ -316,7 +316,7 @@ def test_info():
 # ---------------------------------------------------------------- existence check, diagnostics
 
 needs_checks = pytest.mark.skipif(
-    not hasattr(fcsolve, "check_existence"),
+    not hasattr(fcsolve._fcsolve, "check_existence"),
     reason="this build has no existence check / diagnostics (interior-point family absent)")
 
 
@@ -369,3 +369,12 @@ def test_diagnostics():
     assert 0 < d["rank_W"] < d["m"] == P.size  # more contact unknowns than dofs behind W
     assert d["asymmetry_W"] == pytest.approx(P.info()["asymmetry_W"])
     assert "contact_ratio" not in d
+
+
+@pytest.mark.skipif(hasattr(fcsolve._fcsolve, "check_existence"),
+                    reason="this build has the interior-point family")
+def test_checks_say_when_the_interior_point_family_is_absent():
+    with pytest.raises(NotImplementedError, match="interior-point"):
+        fcsolve.check_existence(one_contact())
+    with pytest.raises(NotImplementedError, match="interior-point"):
+        one_contact().diagnostics()
