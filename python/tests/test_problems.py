@@ -2,6 +2,7 @@
 validation of bad input, the reduction and the summary."""
 
 import gc
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,7 +10,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as sla
 
 import fcsolve
-from conftest import FCREF, all_files, data_file
+from conftest import FCREF, ROOT, all_files, data_file
 
 
 def random_reaction(problem, seed=0):
@@ -21,6 +22,16 @@ def random_reaction(problem, seed=0):
 
 def one_contact(q=(-1.0, 0.1, 0.0), mu=0.5, W=None):
     return fcsolve.LocalProblem(sp.identity(3) if W is None else W, np.array(q), [mu])
+
+
+def test_the_package_holds_every_module_of_the_source_tree():
+    """The build tree (PYTHONPATH=build/python) or the installed wheel has
+    every module of python/fcsolve, subpackages included."""
+    source = ROOT / "python" / "fcsolve"
+    package = Path(fcsolve.__file__).parent
+    missing = [str(p.relative_to(source)) for p in source.rglob("*.py")
+               if not (package / p.relative_to(source)).exists()]
+    assert not missing, f"{package} lacks {missing}"
 
 
 # ---------------------------------------------------------------- loading, views
