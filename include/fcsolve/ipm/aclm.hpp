@@ -85,6 +85,7 @@ class AclmSolver : public IpmSolverBase<Form> {
       opt.slow_below = 0;
       opt.record_history = false;
       opt.iteration_offset = total;
+      opt.seconds_offset = clock.seconds();
       const IpmReport rep = this->run_engine(it, opt);
       total += rep.iterations;
       last_exit = rep.exit;

@@ -48,6 +48,7 @@ struct IpmOptions {
   bool record_history = false;
   IterationCallback callback;
   int iteration_offset = 0;      ///< added to iteration numbers in callbacks
+  double seconds_offset = 0;     ///< added to the callbacks' seconds (time before this run)
 };
 
 enum class IpmExit {
@@ -197,8 +198,10 @@ class InteriorPoint {
         rep.fake_iteration = k;
         rep.fake_error = err;
       }
-      if (opt.callback) {
-        IterationInfo info{opt.iteration_offset + k, err, true, clock.seconds()};
+      // k = 0 is the starting point, not an iteration: callbacks see the
+      // steps numbered 1, 2, ... (continued across ACLM's inner runs).
+      if (opt.callback && k > 0) {
+        IterationInfo info{opt.iteration_offset + k, err, true, opt.seconds_offset + clock.seconds()};
         if (!opt.callback(info)) {
           rep.exit = IpmExit::Stopped;
           break;

@@ -74,6 +74,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
       opt.max_iter = remaining();
       opt.max_time = st.max_time - clock.seconds();
       opt.iteration_offset = total;
+      opt.seconds_offset = clock.seconds();
       const IpmReport rep = this->run_engine(it, opt);
       total += rep.iterations;
       info.history.insert(info.history.end(), rep.history.begin(), rep.history.end());

@@ -79,6 +79,8 @@ class SocqpIpm : public IpmSolverBase<Form> {
         opt.slow_below = 0;
         opt.max_iter = st.max_iter - info.iterations;
         opt.iteration_offset = info.iterations;
+        opt.seconds_offset = clock.seconds();
+        opt.max_time = st.max_time - clock.seconds();
         const IpmReport more = this->run_engine(it, opt);
         info.iterations += more.iterations;
         info.history.insert(info.history.end(), more.history.begin(), more.history.end());
