@@ -21,6 +21,7 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -90,6 +91,14 @@ inline void check_warm_start(const Vector& x, Index size, const char* name) {
   if (x.size() != 0 && !x.allFinite()) throw InvalidProblem(name, "warm start is not finite");
 }
 
+/// A solver entry that returns a solution of the wrong size is a bug in
+/// that entry: say so instead of multiplying mismatched sizes.
+inline void check_returned(const Vector& x, Index size, const std::string& solver, const char* name) {
+  if (x.size() != size)
+    throw std::logic_error("solver '" + solver + "' returned " + name + " with " +
+                           std::to_string(x.size()) + " entries, expected " + std::to_string(size));
+}
+
 }  // namespace detail
 
 /// Solves FC/II with the named solver.
@@ -111,6 +120,7 @@ inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const
   } else {
     out = e.solve_local(p, req);
   }
+  detail::check_returned(out.r, p.size(), e.name, "r");
   out.u = p.W * out.r + p.q;
   detail::enforce_tolerance(out, local_error_report(p, out.r, out.u).error, req.common.tol);
   if (!note.empty()) out.info.message = note + (out.info.message.empty() ? "" : "; " + out.info.message);
@@ -142,6 +152,8 @@ SolveOutcome solve(const GlobalProblemView& p, const SolverEntry& e, const Solve
     out.info.setup_seconds += reduce_seconds;
     q_norm = reduction.free_velocity_norm();
   }
+  detail::check_returned(out.r, p.size(), e.name, "r");
+  detail::check_returned(out.v, p.num_dofs(), e.name, "v");
   out.u = p.H.transpose() * out.v + p.w;
   const GlobalErrorReport rep = global_error_report(p, q_norm, out.r, out.v, out.lambda);
   detail::enforce_tolerance(out, rep.error, req.common.tol);
