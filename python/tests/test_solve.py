@@ -38,8 +38,28 @@ def local_solvers():
     return [s.name for s in fcsolve.solvers() if s.local]
 
 
-def one_contact(q, mu=0.5):
-    return fcsolve.LocalProblem(sp.identity(3), np.array(q, dtype=float), [mu])
+def global_only(solver):
+    """A solver of FC/I only (e.g. nsn-ac-global): it gets global problems."""
+    return solver is not None and solver not in local_solvers()
+
+
+def one_contact(q, mu=0.5, solver=None):
+    """u = r + q with W = I; for a global-only solver the same contact as
+    FC/I with M = I, H = I, f = q, w = 0 (v = r + q, u = v)."""
+    q = np.array(q, dtype=float)
+    if global_only(solver):
+        return fcsolve.GlobalProblem(sp.identity(3), sp.identity(3), q, np.zeros(3), [mu])
+    return fcsolve.LocalProblem(sp.identity(3), q, [mu])
+
+
+def real_problem(solver, local_name, global_name="Box_Stacks-i0035-31-0.hdf5"):
+    """A local FCLIB problem, or a global one of a similar size for a
+    global-only solver."""
+    return fcsolve.load(data_file(global_name if global_only(solver) else local_name))
+
+
+def error_of(P, res):
+    return P.error(res.r, res.v) if isinstance(P, fcsolve.GlobalProblem) else P.error(res.r)
 
 
 # Closed forms with W = I (u = r + q), mu = 0.5:
@@ -58,16 +78,16 @@ CLOSED_FORMS = {
 @pytest.mark.parametrize("case", sorted(CLOSED_FORMS))
 def test_closed_forms(solver, case):
     q, expected = CLOSED_FORMS[case]
-    P = one_contact(q)
+    P = one_contact(q, solver=solver)
     res = fcsolve.solve(P, solver, tol=1e-10)
-    assert res.error == pytest.approx(P.error(res.r), rel=1e-12, abs=1e-300)
+    assert res.error == pytest.approx(error_of(P, res), rel=1e-12, abs=1e-300)
     if case == "sliding" and solver in ASSOCIATED_LAW:
         assert not res.converged and res.error > 1e-3  # s = 0 cannot slide
         return
     assert res.converged, res
     np.testing.assert_allclose(res.r, expected, atol=1e-8)
     np.testing.assert_allclose(res.u, np.array(expected) + q, atol=1e-8)
-    assert P.error(res.r) <= 1e-10
+    assert error_of(P, res) <= 1e-10
 
 
 def check_result(path, P, res, tol):
@@ -112,7 +132,7 @@ def test_every_solver_is_honest_on_larger_problems(solver, name):
 
 @pytest.mark.parametrize("solver", solver_params())
 def test_warm_start_reduces_iterations(solver):
-    P = fcsolve.load(data_file("Confeti-ex03-Fc3D-SBM.hdf5"))
+    P = real_problem(solver, "Confeti-ex03-Fc3D-SBM.hdf5")
     cold = fcsolve.solve(P, solver, tol=1e-6, max_time=20)
     if not cold.converged:
         pytest.skip(f"{solver} does not converge from scratch here: {cold}")
@@ -128,7 +148,7 @@ def test_warm_start_reduces_iterations(solver):
 
 @pytest.mark.parametrize("solver", solver_params())
 def test_callback_sees_each_iteration_and_can_stop(solver):
-    P = fcsolve.load(data_file("Confeti-ex03-Fc3D-SBM.hdf5"))
+    P = real_problem(solver, "Confeti-ex03-Fc3D-SBM.hdf5")
     calls = []
 
     def callback(iteration, error, seconds):
@@ -144,12 +164,12 @@ def test_callback_sees_each_iteration_and_can_stop(solver):
     assert all(isinstance(e, float) and isinstance(s, float) for _, e, s in calls)
     assert [c[2] for c in calls] == sorted(c[2] for c in calls)
     # the result is still an honest one (its error is that of its r)
-    assert res.error == pytest.approx(P.error(res.r), rel=1e-10)
+    assert res.error == pytest.approx(error_of(P, res), rel=1e-10)
 
 
 @pytest.mark.parametrize("solver", solver_params())
 def test_callback_returning_none_goes_on_and_exceptions_propagate(solver):
-    P = one_contact((-1.0, 2.0, 0.0))
+    P = one_contact((-1.0, 2.0, 0.0), solver=solver)
     seen = []
     res = fcsolve.solve(P, solver, tol=1e-10, callback=lambda i, e, s: seen.append(i))
     assert res.converged or solver in ASSOCIATED_LAW, res
@@ -158,14 +178,14 @@ def test_callback_returning_none_goes_on_and_exceptions_propagate(solver):
     def failing(iteration, error, seconds):
         raise ZeroDivisionError("from the callback")
 
-    Q = fcsolve.load(data_file("Confeti-ex03-Fc3D-SBM.hdf5"))
+    Q = real_problem(solver, "Confeti-ex03-Fc3D-SBM.hdf5")
     with pytest.raises(ZeroDivisionError, match="from the callback"):
         fcsolve.solve(Q, solver, tol=1e-14, callback=failing)
 
 
 @pytest.mark.parametrize("solver", solver_params())
 def test_history(solver):
-    P = fcsolve.load(data_file("FC3D_Example1.hdf5"))
+    P = real_problem(solver, "FC3D_Example1.hdf5", "GFC3D_Example1.hdf5")
     res = fcsolve.solve(P, solver, tol=1e-8, history=True)
     # one entry per iteration at most, plus the starting point (a solver may
     # record an estimate, or skip the sweep in which it checks the full error)
@@ -211,7 +231,7 @@ WRONG_TYPE = {"real": "1.0", "integer": 2.5, "boolean": 1, "choice": 3}
 @pytest.mark.parametrize("solver", solver_params())
 def test_settings_are_typed_and_checked(solver):
     spec = fcsolve.solver(solver)
-    P = one_contact((-1.0, 0.1, 0.0))
+    P = one_contact((-1.0, 0.1, 0.0), solver=solver)
     with pytest.raises(fcsolve.UsageError, match="unknown setting 'no_such_knob'"):
         fcsolve.solve(P, solver, no_such_knob=1)
     s = fcsolve.Settings(solver)
@@ -232,7 +252,7 @@ def test_settings_are_typed_and_checked(solver):
         s[setting.name] = value
         assert s[setting.name] == value and getattr(s, setting.name) == value
         res = fcsolve.solve(P, solver, tol=1e-10, **{setting.name: value})
-        assert res.error == pytest.approx(P.error(res.r), rel=1e-12, abs=1e-300)
+        assert res.error == pytest.approx(error_of(P, res), rel=1e-12, abs=1e-300)
     res = fcsolve.solve(P, s, tol=1e-10)  # a Settings object as the solver
     assert res.solver == solver
     assert s.as_dict() == dict(s.items()) and len(s) == len(spec.settings)
@@ -274,11 +294,18 @@ def test_bad_solve_arguments():
 
 @pytest.mark.parametrize("solver", solver_params())
 def test_inputs_are_not_modified(solver):
-    P = fcsolve.load(data_file("FC3D_Example1.hdf5"))
-    W, q = P.W.copy(), P.q.copy()
+    P = real_problem(solver, "FC3D_Example1.hdf5", "GFC3D_Example1.hdf5")
+    names = ("M", "H", "f", "w", "mu") if isinstance(P, fcsolve.GlobalProblem) else ("W", "q", "mu")
+    before = {n: getattr(P, n).copy() for n in names}
     r0 = np.full(P.size, 0.1)
     fcsolve.solve(P, solver, r0=r0)
-    assert (r0 == 0.1).all() and (P.W != W).nnz == 0 and (P.q == q).all()
+    assert (r0 == 0.1).all()
+    for n in names:
+        after = getattr(P, n)
+        if sp.issparse(after):
+            assert (after != before[n]).nnz == 0, n
+        else:
+            assert (after == before[n]).all(), n
 
 
 def test_result_fields():
