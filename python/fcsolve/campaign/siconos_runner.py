@@ -79,6 +79,12 @@ def solve(sn, problem, name, tol, max_iter):
     options = sn.SolverOptions(getattr(sn, "SICONOS_" + solver_id))
     options.iparam[sn.SICONOS_IPARAM_MAX_ITER] = max_iter
     options.dparam[sn.SICONOS_DPARAM_TOL] = tol
+    if name == "nsgs" and problem.kind == "local":
+        # Full error every sweep, as fcsolve's nsgs checks it: Siconos'
+        # default (a light error, the full one at the end) keeps sweeping long
+        # after the FCLIB error is met, which would make it look slower.
+        options.iparam[sn.SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] = \
+            sn.SICONOS_FRICTION_3D_NSGS_ERROR_EVALUATION_FULL
     m = problem.m
     r, u = np.zeros(m), np.zeros(m)
     if problem.kind == "local":
