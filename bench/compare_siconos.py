@@ -34,6 +34,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import fclib_arrays  # noqa: E402
+from siconos_runner import SOLVERS as SICONOS_SOLVERS  # noqa: E402  (imports no siconos)
 
 # Groups of (fcsolve solver + extra CLI args, Siconos runner solver) pairs.
 # Each solver family adds its group (e.g. "newton": nsn-ac <-> NSN-AC, ...).
@@ -166,8 +167,11 @@ def main():
             except (NotImplementedError, ValueError, OSError) as e:
                 print("%-36s skipped: %s" % (name, e))
                 continue
+            kind = meter.p["kind"]
             for fc_name, fc_args, sic_name in pairs:
                 label = " ".join([fc_name] + fc_args)
+                if kind == "local" and "local" not in SICONOS_SOLVERS[sic_name]:
+                    continue  # a gfc3d solver (Siconos' IPM...): global problems only
                 fc_out = os.path.join(tmp, "fc.hdf5")
                 sic_out = os.path.join(tmp, "sic.hdf5")
                 for f in (fc_out, sic_out):
