@@ -6,10 +6,11 @@
 
 For every file and every (fcsolve solver, Siconos solver) pair of the chosen
 groups, runs `fcsolve solve FILE --solver X --tol T --max-time S --json --out
-...` and `siconos_runner.py FILE --solver Y ...`, each in its own process with
-a wall-clock timeout, then recomputes the FCLIB error of BOTH returned
-solutions with one independent implementation (fclib_arrays.py: numpy,
-scipy, h5py), and prints per problem the times, errors, solved flags and the
+...` and the campaign's Siconos runner (python/fcsolve/campaign/
+siconos_runner.py FILE --solver Y ...), each in its own process with a
+wall-clock timeout, then recomputes the FCLIB error of BOTH returned
+solutions with one independent implementation (the campaign's
+fclib_error.py: numpy, scipy, h5py), and prints per problem the times, errors, solved flags and the
 time ratio fcsolve / Siconos, then per pair the solved counts and the median
 ratio over the problems both solve. "Solved" means error <= tol within the
 time limit, whatever the solver says about itself.
@@ -32,29 +33,30 @@ import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-import fclib_arrays  # noqa: E402
+CAMPAIGN = os.path.join(ROOT, "python", "fcsolve", "campaign")
+sys.path.insert(0, CAMPAIGN)  # the runner and the error measure, as plain modules
+import fclib_error  # noqa: E402
 from siconos_runner import SOLVERS as SICONOS_SOLVERS  # noqa: E402  (imports no siconos)
 
 # Groups of (fcsolve solver + extra CLI args, Siconos runner solver) pairs.
 # Each solver family adds its group (e.g. "newton": nsn-ac <-> NSN-AC, ...).
 PAIRS = {
-    "nsgs": [("nsgs", [], "NSGS")],
+    "nsgs": [("nsgs", [], "nsgs")],
     "nsgs-variants": [
-        ("psor", [], "NSGS"),
-        ("nsgs-ac", [], "NSGS"),
-        ("nsgs-hybrid", [], "NSGS"),
-        ("nsgs-fb", [], "NSGS"),
-        ("nsgs-proj", [], "NSGS"),
-        ("nsgs", ["--ordering", "reshuffle"], "NSGS-SHUFFLE"),
+        ("psor", [], "nsgs"),
+        ("nsgs-ac", [], "nsgs"),
+        ("nsgs-hybrid", [], "nsgs"),
+        ("nsgs-fb", [], "nsgs"),
+        ("nsgs-proj", [], "nsgs"),
+        ("nsgs", ["--ordering", "reshuffle"], "nsgs-shuffle"),
     ],
-    "newton": [("nsn-ac", [], "NSN-AC"), ("nsn-fb", [], "NSN-FB"), ("nsn-nm", [], "NSN-NM"),
-               ("nsn-jm", [], "NSN-JM"), ("nsn-ac-hybrid", [], "NSN-AC")],
+    "newton": [("nsn-ac", [], "nsn-ac"), ("nsn-fb", [], "nsn-fb"), ("nsn-nm", [], "nsn-nm"),
+               ("nsn-jm", [], "nsn-jm"), ("nsn-ac-hybrid", [], "nsn-ac")],
     # FC/I natively (global files only): fcsolve in (v, r) vs Siconos gfc3d NSN-AC
-    "newton-global": [("nsn-ac-global", [], "GNSN-AC"), ("nsn-fb-global", [], "GNSN-AC")],
+    "newton-global": [("nsn-ac-global", [], "gnsn-ac"), ("nsn-fb-global", [], "gnsn-ac")],
     # interior-point family on global problems (gfc3d_driver for Siconos)
-    "ipm": [("nipm", [], "IPM"), ("aclm-newton", [], "IPM"), ("nipm", [], "GNSGS-WR"),
-            ("nipm", [], "GNSN-AC")],
+    "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
+            ("nipm", [], "gnsn-ac")],
 }
 
 
@@ -113,15 +115,15 @@ def _seconds(reported):
     return float(reported.get("seconds", float("nan")))
 
 
-def measure(meter, path, reported, note, max_time, tol):
+def measure(problem, path, reported, note, max_time, tol):
     """dict(seconds, error, solved, note) judged by the independent error."""
     out = dict(seconds=float("nan"), error=float("inf"), solved=False, note=note)
     if reported is None or not os.path.exists(path):
         return out
     out["seconds"] = _seconds(reported)
     try:
-        r, v = fclib_arrays.read_solution(path)
-        out["error"] = meter.error(r, v)
+        r, v, lam = fclib_error.read_solution(path)
+        out["error"] = fclib_error.error(problem, r, v, lam)
     except (OSError, KeyError, ValueError) as e:
         out["note"] = "unreadable solution: %s" % e
         return out
@@ -153,7 +155,7 @@ def main():
     if not with_siconos:
         print("note: `import siconos.numerics` fails for %s: Siconos columns skipped "
               "(Debian: apt-get install python3-siconos)" % sys.executable)
-    runner = os.path.join(HERE, "siconos_runner.py")
+    runner = os.path.join(CAMPAIGN, "siconos_runner.py")
     timeout = args.max_time + args.margin
     rows = []
     siconos_done = {}
@@ -163,15 +165,17 @@ def main():
         for path in files:
             name = os.path.splitext(os.path.basename(path))[0]
             try:
-                meter = fclib_arrays.ErrorMeter(fclib_arrays.read_problem(path))
-            except (NotImplementedError, ValueError, OSError) as e:
+                problem = fclib_error.load_problem(path)
+                problem.free_velocity_norm()  # factorises M once, here
+            except (ValueError, KeyError, OSError) as e:
                 print("%-36s skipped: %s" % (name, e))
                 continue
-            kind = meter.p["kind"]
+            kind = problem.kind
             for fc_name, fc_args, sic_name in pairs:
                 label = " ".join([fc_name] + fc_args)
-                if kind == "local" and "local" not in SICONOS_SOLVERS[sic_name]:
-                    continue  # a gfc3d solver (Siconos' IPM...): global problems only
+                if (SICONOS_SOLVERS[sic_name]["local"] if kind == "local"
+                        else SICONOS_SOLVERS[sic_name]["global_"]) is None:
+                    continue  # no Siconos solver of that name for this kind (ipm: global only)
                 fc_out = os.path.join(tmp, "fc.hdf5")
                 sic_out = os.path.join(tmp, "sic.hdf5")
                 for f in (fc_out, sic_out):
@@ -181,7 +185,7 @@ def main():
                                        repr(args.tol), "--max-time", repr(args.max_time),
                                        "--max-iter", "1000000000", "--json", "--out", fc_out]
                                       + fc_args, timeout, args.repeat)
-                fc = measure(meter, fc_out, rep, note, args.max_time, args.tol)
+                fc = measure(problem, fc_out, rep, note, args.max_time, args.tol)
                 sic = dict(seconds=float("nan"), error=float("nan"), solved=False, note="skipped")
                 if (path, sic_name) in siconos_done:  # pairs sharing a Siconos solver
                     sic = siconos_done[(path, sic_name)]
@@ -189,7 +193,7 @@ def main():
                     rep, note = run_timed([sys.executable, runner, path, "--solver", sic_name,
                                            "--tol", repr(args.tol), "--max-time", repr(args.max_time),
                                            "--out", sic_out], timeout, args.repeat)
-                    sic = measure(meter, sic_out, rep, note, args.max_time, args.tol)
+                    sic = measure(problem, sic_out, rep, note, args.max_time, args.tol)
                     siconos_done[(path, sic_name)] = sic
                 ratio = fc["seconds"] / sic["seconds"] if fc["solved"] and sic["solved"] \
                     and sic["seconds"] > 0 else float("nan")

@@ -1,21 +1,38 @@
 #!/usr/bin/python3
 """Runs one Siconos 4.4 solver on one FCLIB problem, like `fcsolve solve`.
 
-    /usr/bin/python3 siconos_runner.py FILE --solver nsgs --tol 1e-8 --out SOL.hdf5 --json
+    /usr/bin/python3 siconos_runner.py FILE --solver nsgs --tol 1e-8 --max-time 20 \\
+        [--max-iter N] [--omega 1.0] --out SOL.hdf5 --json
     /usr/bin/python3 siconos_runner.py --list          # the solvers, as JSON
 
-Prints one JSON line (solver, status, iterations, error, seconds, ...) and
-writes /solution/{r, u[, v]} to SOL. Exit codes as fcsolve's: 0 converged by
-Siconos' own test, 1 not, 2 bad input or solver not available for the
-problem, 3 Siconos not importable. Local problems go to fc3d_driver, global
-ones to gfc3d_driver (problem objects built from the arrays; this Siconos has
-no FCLIB reader in its Python module).
+Prints one JSON line (solver, status, iterations, error, fclib_error, seconds,
+...) and writes /solution/{r, u[, v]} to SOL. Exit codes as fcsolve's: 0
+converged by Siconos' own test, 1 not, 2 bad input or solver not available
+for the problem, 3 Siconos not importable. The problem objects are built from
+arrays read by the neighbour fclib_error.py (this Siconos has no FCLIB reader
+in its Python module). Used by the campaign (`fcsolve bench --solvers
+siconos:...`) and by bench/compare_siconos.py.
 
-`error` here is Siconos' own residual (its own scaling); the campaign
-recomputes the FCLIB error from SOL, and that is what counts. Siconos has no
-time limit: the campaign's wall-clock limit stops it. `seconds` is the
-driver call alone. Run with the Python that has siconos (/usr/bin/python3),
-by path: it imports its neighbour fclib_error.py as a plain module.
+Iterative solvers ("chunked" below) run in chunks of growing iteration
+counts, warm started, so that --max-time is honoured (a C call cannot be
+interrupted; the result is that of one long run). Siconos' own stopping test
+scales its residual differently from FCLIB (fc3d_compute_error divides by
+max(||q||, ||r||, ||u||)), so when Siconos reports convergence but the FCLIB
+error (fclib_error.py) is above --tol, its tolerance is tightened and the run
+goes on: `seconds` is then the time Siconos needs to reach --tol as FCLIB
+measures it. Global problems are solved either by Siconos' own reduction
+(globalFrictionContact_reformulation_FrictionContact, what its *_WR solvers
+do, then the local solver, then v by globalFrictionContact_computeGlobalVelocity;
+as fcsolve's local solvers do) or by a native gfc3d solver (ipm, gnsgs-wr,
+gnsn-ac, ...), in one call. Other solvers run once, up to --max-iter; the
+campaign's wall-clock limit stops them.
+
+`error` is Siconos' own residual (its own scaling), `fclib_error` the FCLIB
+one, for information: the campaign and compare_siconos.py recompute the error
+from SOL, and that is what counts. `seconds` covers the Siconos calls only
+(reformulation, solver, global velocity), not file reading nor error checks.
+Run with the Python that has siconos (/usr/bin/python3), by path: it imports
+its neighbour fclib_error.py as a plain module.
 """
 import argparse
 import ctypes
@@ -29,24 +46,66 @@ import h5py
 import numpy as np
 import scipy.sparse as sp
 
-import fclib_error  # the campaign's reader, beside this file
+import fclib_error  # the campaign's reader and error measure, beside this file
 
-# name -> (local solver id, global solver id), as SICONOS_* constant suffixes;
-# None: Siconos has no such solver for that kind of problem.
+REDUCE = "reduce"  # a global problem: Siconos' reduction, then the local solver
+OPTIONS = {"omega": 1.0}  # --omega, read by _psor
+
+
+def _nsgs_full_error(sn, so):
+    # Full error every sweep, as fcsolve's nsgs checks it: Siconos' default
+    # (a light error, the full one at the end) keeps sweeping long after the
+    # FCLIB error is met, which would make it look slower.
+    so.iparam[sn.SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] = \
+        sn.SICONOS_FRICTION_3D_NSGS_ERROR_EVALUATION_FULL
+
+
+def _nsgs_shuffled(sn, so):
+    _nsgs_full_error(sn, so)
+    so.iparam[sn.SICONOS_FRICTION_3D_NSGS_SHUFFLE] = sn.SICONOS_FRICTION_3D_NSGS_SHUFFLE_TRUE_EACH_LOOP
+
+
+def _psor(sn, so):
+    _nsgs_full_error(sn, so)
+    so.iparam[sn.SICONOS_FRICTION_3D_NSGS_RELAXATION] = sn.SICONOS_FRICTION_3D_NSGS_RELAXATION_TRUE
+    so.dparam[sn.SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE] = OPTIONS["omega"]
+
+
+def _nsn_jean_moreau(sn, so):
+    so.iparam[sn.SICONOS_FRICTION_3D_NSN_FORMULATION] = \
+        sn.SICONOS_FRICTION_3D_NSN_FORMULATION_JEANMOREAU_GENERATED
+
+
+def _spec(local=None, global_=None, configure=None, chunked=False):
+    """local: fc3d solver id; global_: gfc3d solver id or REDUCE (SICONOS_*
+    suffixes; None: no such solver for that kind of problem)."""
+    return dict(local=local, global_=global_, configure=configure, chunked=chunked)
+
+
 SOLVERS = {
-    "nsgs": ("FRICTION_3D_NSGS", "GLOBAL_FRICTION_3D_NSGS_WR"),
-    "nsn-ac": ("FRICTION_3D_NSN_AC", "GLOBAL_FRICTION_3D_NSN_AC"),
-    "nsn-fb": ("FRICTION_3D_NSN_FB", None),
-    "vi-eg": ("FRICTION_3D_VI_EG", "GLOBAL_FRICTION_3D_VI_EG"),
-    "vi-fp": ("FRICTION_3D_VI_FPP", "GLOBAL_FRICTION_3D_VI_FPP"),
-    "admm": ("FRICTION_3D_ADMM", "GLOBAL_FRICTION_3D_ADMM"),
-    "prox": ("FRICTION_3D_PROX", "GLOBAL_FRICTION_3D_PROX_WR"),
-    "aclm": ("FRICTION_3D_ACLMFP", "GLOBAL_FRICTION_3D_ACLMFP"),
-    "tresca": ("FRICTION_3D_TFP", "GLOBAL_FRICTION_3D_TFP_WR"),
-    "ipm": (None, "GLOBAL_FRICTION_3D_IPM"),
+    "nsgs": _spec("FRICTION_3D_NSGS", REDUCE, _nsgs_full_error, chunked=True),
+    "nsgs-shuffle": _spec("FRICTION_3D_NSGS", REDUCE, _nsgs_shuffled, chunked=True),
+    "psor": _spec("FRICTION_3D_NSGS", REDUCE, _psor, chunked=True),
+    "nsn-ac": _spec("FRICTION_3D_NSN_AC", REDUCE, chunked=True),
+    "nsn-fb": _spec("FRICTION_3D_NSN_FB", REDUCE, chunked=True),
+    "nsn-nm": _spec("FRICTION_3D_NSN_NM", REDUCE, chunked=True),
+    "nsn-jm": _spec("FRICTION_3D_NSN_AC", REDUCE, _nsn_jean_moreau, chunked=True),
+    "vi-eg": _spec("FRICTION_3D_VI_EG", "GLOBAL_FRICTION_3D_VI_EG"),
+    "vi-fp": _spec("FRICTION_3D_VI_FPP", "GLOBAL_FRICTION_3D_VI_FPP"),
+    "admm": _spec("FRICTION_3D_ADMM", "GLOBAL_FRICTION_3D_ADMM"),
+    "prox": _spec("FRICTION_3D_PROX", "GLOBAL_FRICTION_3D_PROX_WR"),
+    "aclm": _spec("FRICTION_3D_ACLMFP", "GLOBAL_FRICTION_3D_ACLMFP"),
+    "tresca": _spec("FRICTION_3D_TFP", "GLOBAL_FRICTION_3D_TFP_WR"),
+    # native gfc3d solvers, global problems only
+    "ipm": _spec(None, "GLOBAL_FRICTION_3D_IPM"),
+    "gnsgs-wr": _spec(None, "GLOBAL_FRICTION_3D_NSGS_WR"),
+    "gnsn-ac": _spec(None, "GLOBAL_FRICTION_3D_NSN_AC"),
 }
-# Time is the campaign's budget, so iterations are nearly unbounded by default.
+# Time is the budget, so iterations are (nearly) unbounded by default: the
+# chunked solvers stop at --max-time, the others at this count or when the
+# campaign's wall-clock limit kills them.
 DEFAULT_MAX_ITER = 100000
+CHUNKED_DEFAULT_MAX_ITER = 2**31 - 1
 
 
 def _csc64(A):
@@ -70,46 +129,113 @@ class _StdoutToStderr:
         os.close(self.saved)
 
 
-def solve(sn, problem, name, tol, max_iter):
-    """(info, r, u, v or None, iterations, own error, seconds) of one solve."""
-    local_id, global_id = SOLVERS[name]
-    solver_id = local_id if problem.kind == "local" else global_id
-    if solver_id is None:
-        raise ValueError(f"Siconos has no {problem.kind} solver for '{name}'")
-    options = sn.SolverOptions(getattr(sn, "SICONOS_" + solver_id))
-    options.iparam[sn.SICONOS_IPARAM_MAX_ITER] = max_iter
-    options.dparam[sn.SICONOS_DPARAM_TOL] = tol
-    if name == "nsgs" and problem.kind == "local":
-        # Full error every sweep, as fcsolve's nsgs checks it: Siconos'
-        # default (a light error, the full one at the end) keeps sweeping long
-        # after the FCLIB error is met, which would make it look slower.
-        options.iparam[sn.SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] = \
-            sn.SICONOS_FRICTION_3D_NSGS_ERROR_EVALUATION_FULL
-    m = problem.m
+class Budget:
+    """Seconds and iterations spent in Siconos calls, against the limits."""
+
+    def __init__(self, max_time, max_iter):
+        self.max_time = float("inf") if max_time is None else max_time
+        self.max_iter = min(max_iter, 2**31 - 1)  # iparam is a C int
+        self.seconds, self.iterations = 0.0, 0
+
+    def timed(self, fn, *args):
+        start = time.perf_counter()
+        with _StdoutToStderr():
+            out = fn(*args)
+        self.seconds += time.perf_counter() - start
+        return out
+
+
+def _options(sn, solver_id, configure, max_iter, tol):
+    so = sn.SolverOptions(getattr(sn, "SICONOS_" + solver_id))
+    if configure:
+        configure(sn, so)
+    so.iparam[sn.SICONOS_IPARAM_MAX_ITER] = max_iter
+    so.dparam[sn.SICONOS_DPARAM_TOL] = tol
+    return so
+
+
+def run_local(sn, spec, fcp, m, tol, budget, fclib_error_of):
+    """Runs a fc3d solver on `fcp` within the budget: (info, r, u, status, own residual)."""
     r, u = np.zeros(m), np.zeros(m)
+    solver_tol, chunk = tol, 100
+    while True:
+        left = budget.max_iter - budget.iterations
+        so = _options(sn, spec["local"], spec["configure"],
+                      min(chunk, left) if spec["chunked"] else left, solver_tol)
+        info = budget.timed(sn.fc3d_driver, fcp, r, u, so)
+        done = int(so.iparam[sn.SICONOS_IPARAM_ITER_DONE])
+        budget.iterations += done
+        residual = float(so.dparam[sn.SICONOS_DPARAM_RESIDU])
+        if not np.all(np.isfinite(r)):
+            return info, r, u, "nan", residual
+        if not spec["chunked"]:
+            return info, r, u, None, residual  # Siconos' own claim decides
+        error = fclib_error_of(r)
+        if error <= tol:
+            return info, r, u, "converged", residual
+        if budget.seconds >= budget.max_time:
+            return info, r, u, "timeout", residual
+        if budget.iterations >= budget.max_iter:
+            return info, r, u, "max-iterations", residual
+        if info == 0:  # converged by Siconos' scaling, not by FCLIB's: tighten
+            if solver_tol < 1e-16:  # Siconos' claim stands; the recomputed error refutes it
+                return info, r, u, "converged", residual
+            solver_tol *= 0.5 * tol / error
+        elif done == 0:
+            return info, r, u, "stalled", residual
+        else:  # grow the chunks, keeping the next one within the time left
+            per_iteration = budget.seconds / max(budget.iterations, 1)
+            left_iterations = (budget.max_time - budget.seconds) / max(per_iteration, 1e-9)
+            chunk = int(max(10, min(2 * chunk, 1.1 * left_iterations)))
+
+
+def _global_problem(sn, problem):
+    if problem.G is not None:
+        raise ValueError("bilateral constraints (G, b) are not passed to Siconos here")
+    gfc = sn.GlobalFrictionContactProblem()
+    gfc.dimension, gfc.numberOfContacts = problem.d, problem.nc
+    # Siconos: M v = q + H r, u = H^T v + b  (FCLIB: f, w)
+    gfc.M, gfc.H = _csc64(problem.M), _csc64(problem.H)
+    gfc.q, gfc.b, gfc.mu = problem.f.copy(), problem.w.copy(), problem.mu.copy()
+    return gfc
+
+
+def solve(sn, problem, name, tol, max_iter, max_time=None):
+    """(info, r, u, v or None, status or None, iterations, own residual, seconds)
+    of one run; status None: Siconos' own claim decides."""
+    spec = SOLVERS[name]
+    if problem.d != 3:
+        raise ValueError("Siconos' fc3d/gfc3d solvers take 3D problems only")
+    route = spec["local"] if problem.kind == "local" else spec["global_"]
+    if route is None:
+        raise ValueError(f"Siconos has no {problem.kind} solver for '{name}'")
+    budget = Budget(max_time, max_iter)
+    m, v = problem.m, None
     if problem.kind == "local":
-        sp_problem = sn.FrictionContactProblem(problem.d, _csc64(problem.W), problem.q, problem.mu)
-        start = time.perf_counter()
-        with _StdoutToStderr():
-            info = sn.fc3d_driver(sp_problem, r, u, options)
-        v = None
+        fcp = sn.FrictionContactProblem(problem.d, _csc64(problem.W), problem.q.copy(),
+                                        problem.mu.copy())
+        info, r, u, status, residual = run_local(
+            sn, spec, fcp, m, tol, budget, lambda r: fclib_error.error(problem, r))
+    elif route == REDUCE:
+        gfc = _global_problem(sn, problem)
+        fcp = budget.timed(sn.globalFrictionContact_reformulation_FrictionContact, gfc)
+
+        def v_of(r):
+            v = np.zeros(problem.n)
+            sn.globalFrictionContact_computeGlobalVelocity(gfc, r, v)
+            return v
+
+        info, r, u, status, residual = run_local(
+            sn, spec, fcp, m, tol, budget, lambda r: fclib_error.error(problem, r, v_of(r)))
+        v = budget.timed(v_of, r)
     else:
-        if problem.G is not None:
-            raise ValueError("bilateral constraints (G, b) are not passed to Siconos here")
-        sp_problem = sn.GlobalFrictionContactProblem()
-        sp_problem.dimension = problem.d
-        sp_problem.numberOfContacts = problem.nc
-        # Siconos: M v = q + H r, u = H^T v + b  (FCLIB: f, w)
-        sp_problem.M, sp_problem.H = _csc64(problem.M), _csc64(problem.H)
-        sp_problem.q, sp_problem.b = problem.f.copy(), problem.w.copy()
-        sp_problem.mu = problem.mu.copy()
-        v = np.zeros(problem.n)
-        start = time.perf_counter()
-        with _StdoutToStderr():
-            info = sn.gfc3d_driver(sp_problem, r, u, v, options)
-    seconds = time.perf_counter() - start
-    return (info, r, u, v, int(options.iparam[sn.SICONOS_IPARAM_ITER_DONE]),
-            float(options.dparam[sn.SICONOS_DPARAM_RESIDU]), seconds)
+        gfc = _global_problem(sn, problem)
+        so = _options(sn, route, None, budget.max_iter, tol)
+        r, u, v = np.zeros(m), np.zeros(m), np.zeros(problem.n)
+        info = budget.timed(sn.gfc3d_driver, gfc, r, u, v, so)
+        budget.iterations = int(so.iparam[sn.SICONOS_IPARAM_ITER_DONE])
+        residual, status = float(so.dparam[sn.SICONOS_DPARAM_RESIDU]), None
+    return info, r, u, v, status, budget.iterations, residual, budget.seconds
 
 
 def write_solution(path, r, u, v):
@@ -134,11 +260,16 @@ def main(argv=None):
     ap.add_argument("--list", action="store_true", help="print the solvers as JSON")
     ap.add_argument("--solver", default="nsgs")
     ap.add_argument("--tol", type=float, default=1e-8)
-    ap.add_argument("--max-iter", type=int, default=DEFAULT_MAX_ITER)
-    ap.add_argument("--max-time", type=float, help="accepted, not enforced (no time limit in Siconos)")
+    ap.add_argument("--max-iter", type=int,
+                    help=f"default: unbounded for the chunked solvers, else {DEFAULT_MAX_ITER}")
+    ap.add_argument("--max-time", type=float,
+                    help="seconds; honoured by the chunked solvers (nsgs, psor, nsn-*), "
+                         "the others run to --max-iter")
+    ap.add_argument("--omega", type=float, default=1.0, help="relaxation of psor")
     ap.add_argument("--out")
     ap.add_argument("--json", action="store_true", help="accepted: output is always JSON")
     a = ap.parse_args(argv)
+    OPTIONS["omega"] = a.omega
     warnings.simplefilter("ignore")  # Siconos' conversion warnings
     try:
         import siconos.numerics as sn
@@ -146,24 +277,34 @@ def main(argv=None):
         print(f"siconos_runner: siconos is not importable by {sys.executable}: {e}", file=sys.stderr)
         return 3
     if a.list:
-        print(json.dumps([dict(name=k, local=v[0] is not None, global_native=v[1] is not None)
-                          for k, v in SOLVERS.items()]))
+        # global_native: can solve FC/I (by Siconos' reduction or a gfc3d solver)
+        print(json.dumps([dict(name=k, local=s["local"] is not None,
+                               global_native=s["global_"] is not None,
+                               global_by=None if s["global_"] is None else
+                               "reduction" if s["global_"] == REDUCE else "gfc3d",
+                               chunked=s["chunked"])
+                          for k, s in SOLVERS.items()]))
         return 0
     if not a.file or a.solver not in SOLVERS:
         print(f"siconos_runner: give FILE and --solver in {sorted(SOLVERS)}", file=sys.stderr)
         return 2
+    if a.max_iter is None:
+        a.max_iter = CHUNKED_DEFAULT_MAX_ITER if SOLVERS[a.solver]["chunked"] else DEFAULT_MAX_ITER
     try:
         problem = fclib_error.load_problem(a.file)
-        info, r, u, v, iterations, own_error, seconds = solve(sn, problem, a.solver, a.tol, a.max_iter)
+        info, r, u, v, status, iterations, own_error, seconds = solve(
+            sn, problem, a.solver, a.tol, a.max_iter, a.max_time)
     except (OSError, ValueError, KeyError) as e:
         print(f"siconos_runner: {a.file}: {e}", file=sys.stderr)
         return 2
     if a.out:
         write_solution(a.out, r, u, v)
-    status = status_of(info, r, iterations, a.max_iter)
+    status = status or status_of(info, r, iterations, a.max_iter)
+    fclib = fclib_error.error(problem, r, v)
+    finite = lambda x: x if np.isfinite(x) else None  # noqa: E731
     print(json.dumps(dict(file=a.file, kind=problem.kind, solver="siconos:" + a.solver,
                           status=status, converged=status == "converged", iterations=iterations,
-                          error=own_error if np.isfinite(own_error) else None, tol=a.tol,
+                          error=finite(own_error), fclib_error=finite(fclib), tol=a.tol,
                           seconds=seconds, setup_seconds=0.0, solve_seconds=seconds,
                           message=f"siconos info={info}", out=a.out)))
     return 0 if status == "converged" else 1
