@@ -46,7 +46,7 @@ SolveOutcome solve_reduced(const LocalProblemView& p, const SolveRequest& req, b
   Newton<F, Cone, Storage> solver(newton_settings(req, hybrid));
   solver.compute(p);
   SolveOutcome out;
-  out.r = req.r0.size() ? req.r0 : Vector(Vector::Zero(p.size()));
+  out.r = initial_reactions(req, p.size());
   out.u.resize(p.size());
   out.info = solver.solve(out.r, out.u);
   return out;
@@ -82,7 +82,7 @@ GlobalSolveFunction global_solver() {
       GlobalNewton<F, Cone> solver(newton_settings(req, false));
       solver.compute(p);
       SolveOutcome out;
-      out.r = req.r0.size() ? req.r0 : Vector(Vector::Zero(p.size()));
+      out.r = initial_reactions(req, p.size());
       out.v.resize(p.num_dofs());
       out.info = solver.solve(out.r, out.v);
       return out;

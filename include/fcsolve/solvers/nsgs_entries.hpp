@@ -59,7 +59,7 @@ SolveOutcome run(const LocalProblemView& view, const SolveRequest& req, const Co
   configure(req.settings, solver.settings().local);
   solver.compute(view);
   SolveOutcome out;
-  out.r = req.r0.size() ? req.r0 : Vector::Zero(view.size());
+  out.r = initial_reactions(req, view.size());
   out.u.resize(view.size());
   solver.solve(out.r, out.u);
   out.info = solver.info();

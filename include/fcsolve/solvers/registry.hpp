@@ -61,6 +61,11 @@ struct SolverEntry {
   GlobalSolveFunction solve_global;  ///< FC/I natively; empty: by reduction
 };
 
+/// The starting reactions of a solve: the request's warm start, else zero.
+inline Vector initial_reactions(const SolveRequest& req, Index size) {
+  return req.r0.size() ? req.r0 : Vector(Vector::Zero(size));
+}
+
 /// A request with the entry's default settings.
 inline SolveRequest make_request(const SolverEntry& e) {
   SolveRequest req;

@@ -21,7 +21,7 @@ SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
   ProjectedFixedPoint<Cone, Storage> solver(s);
   solver.compute(p);
   SolveOutcome out;
-  out.r = req.r0.size() ? req.r0 : Vector(Vector::Zero(p.size()));
+  out.r = initial_reactions(req, p.size());
   out.u.resize(p.size());
   out.info = solver.solve(out.r, out.u);
   return out;
