@@ -11,6 +11,7 @@
 //                 campaigns: forwarded to the Python runner fcsolve.campaign)
 // Exit codes: 0 solved (or command done), 1 tolerance not reached, 2 bad input
 // or usage (message on stderr), 3 internal error.
+#include "isolated_read.hpp"
 #include "json_writer.hpp"
 
 #include <fcsolve/core/error.hpp>
@@ -27,6 +28,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -37,6 +39,7 @@ namespace {
 
 using namespace fcsolve;
 using fcsolve_cli::JsonWriter;
+using fcsolve_cli::probe_read_in_child;
 
 constexpr int kExitSolved = 0, kExitNotSolved = 1, kExitBadInput = 2, kExitInternal = 3;
 
@@ -145,6 +148,12 @@ std::string quoted(const std::string& s) {
   return out + "\"";
 }
 
+/// A problem file from the user: probed in a child first (isolated_read.hpp).
+fclib::Problem read_untrusted(const std::string& path) {
+  probe_read_in_child(path);
+  return fclib::read_problem(path);
+}
+
 // ---------------------------------------------------------------- info
 
 int cmd_info(Args args) {
@@ -152,7 +161,7 @@ int cmd_info(Args args) {
   args.expect_no_more_options();
   if (args.positional.size() != 1) throw UsageError("info takes exactly one FILE");
   const std::string path = args.positional[0];
-  const fclib::Problem problem = fclib::read_problem(path);
+  const fclib::Problem problem = read_untrusted(path);
   const ProblemSummary s = std::visit([](const auto& p) { return summarize(p); }, problem);
   const std::string title = std::visit([](const auto& p) { return p.text.title; }, problem);
   const bool global = s.kind == "global";
@@ -282,22 +291,50 @@ void print_outcome(const std::string& path, const std::string& kind,
   }
 }
 
-/// The warm start asked for (--warm-start guess|solution), checked by size.
-std::optional<fclib::Solution> warm_start(const std::string& path, const std::string& which) {
+/// The warm start asked for (--warm-start guess|solution), checked against
+/// the problem's sizes so that a mismatch names the file and the dataset.
+std::optional<fclib::Solution> warm_start(const std::string& path, const std::string& which,
+                                          const fclib::Problem& problem) {
   if (which == "none") return std::nullopt;
+  std::optional<fclib::Solution> s;
+  std::string group;
   if (which == "solution") {
-    auto s = fclib::read_solution(path);
-    if (!s) throw IoError(path, "solution", "--warm-start solution: the file has no /solution");
-    return s;
+    s = fclib::read_solution(path);
+    group = "solution";
+    if (!s) throw IoError(path, group, "--warm-start solution: the file has no /solution");
+  } else {
+    auto g = fclib::read_guesses(path);
+    group = "guesses/1";
+    if (g.empty()) throw IoError(path, "guesses", "--warm-start guess: the file has no /guesses");
+    s = std::move(g.front());
   }
-  auto g = fclib::read_guesses(path);
-  if (g.empty()) throw IoError(path, "guesses", "--warm-start guess: the file has no /guesses");
-  return g.front();
+  const auto [m, n] = std::visit(
+      [](const auto& p) -> std::pair<Index, Index> {
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, LocalProblem>) return {p.W.rows(), -1};
+        else return {p.H.cols(), p.M.rows()};
+      },
+      problem);
+  const auto check = [&](const Vector& x, const char* name, Index expected) {
+    if (expected >= 0 && x.size() > 0 && x.size() != expected)
+      throw IoError(path, group + "/" + name,
+                    "--warm-start " + which + ": " + std::to_string(x.size()) +
+                        " entries, the problem needs " + std::to_string(expected));
+  };
+  check(s->r, "r", m);
+  check(s->v, "v", n);
+  return s;
+}
+
+/// True when `a` and `b` name the same existing file (links included).
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return std::filesystem::equivalent(a, b, ec) && !ec;
 }
 
 registry::SolveOutcome solve_file(const std::string& path, const fclib::Problem& problem,
                                   SolveOptions& o) {
-  if (auto ws = warm_start(path, o.warm_start)) {
+  if (auto ws = warm_start(path, o.warm_start, problem)) {
     o.request.r0 = ws->r;
     o.request.v0 = ws->v;
   }
@@ -315,9 +352,15 @@ int cmd_solve(Args args) {
   SolveOptions o = parse_solve_options(args, "");
   if (args.positional.size() != 1) throw UsageError("solve takes exactly one FILE");
   const std::string path = args.positional[0];
-  const fclib::Problem problem = fclib::read_problem(path);
+  // --out rewrites its file from scratch: never the file we read (its
+  // guesses and reference solution would be lost).
+  if (!o.out.empty() && same_file(path, o.out))
+    throw UsageError("--out " + o.out + " is the input file; refusing to overwrite it (its "
+                     "/guesses and /solution would be lost): write the solution to another file");
+  const fclib::Problem problem = read_untrusted(path);
   const std::string kind = std::holds_alternative<LocalProblem>(problem) ? "local" : "global";
-  const registry::SolveOutcome out = solve_file(path, problem, o);
+  const registry::SolveOutcome out =
+      fclib::with_file_context(path, problem, [&] { return solve_file(path, problem, o); });
   if (!o.out.empty()) {
     fclib::write_problem(o.out, problem);
     fclib::write_solution(o.out, fclib::Solution{out.r, out.u, out.v, out.lambda});
@@ -334,7 +377,8 @@ int cmd_error(Args args) {
   args.expect_no_more_options();
   if (args.positional.size() != 2) throw UsageError("error takes PROBLEM.hdf5 SOLUTION.hdf5");
   const std::string path = args.positional[0], sol_path = args.positional[1];
-  const fclib::Problem problem = fclib::read_problem(path);
+  const fclib::Problem problem = read_untrusted(path);
+  probe_read_in_child(sol_path, /*with_problem=*/false);
   auto sol = fclib::read_solution(sol_path);
   if (!sol) throw IoError(sol_path, "solution", "missing /solution group");
   JsonWriter w;
@@ -352,7 +396,8 @@ int cmd_error(Args args) {
     const auto& gp = std::get<GlobalProblem>(problem);
     if (sol->r.size() != gp.size())
       throw IoError(sol_path, "solution/r", "expected " + std::to_string(gp.size()) + " entries");
-    GlobalReduction<DefaultBackend> reduction(gp, /*form_W=*/false);
+    GlobalReduction<DefaultBackend> reduction = fclib::with_file_context(
+        path, problem, [&] { return GlobalReduction<DefaultBackend>(gp, /*form_W=*/false); });
     const Vector v = sol->v.size() ? sol->v : reduction.velocity(sol->r);
     if (v.size() != gp.num_dofs())
       throw IoError(sol_path, "solution/v", "expected " + std::to_string(gp.num_dofs()) + " entries");
@@ -376,7 +421,7 @@ int cmd_check(Args args) {
   args.expect_no_more_options();
   if (args.positional.size() != 1) throw UsageError("check takes exactly one FILE");
   const std::string path = args.positional[0];
-  const fclib::Problem problem = fclib::read_problem(path);
+  const fclib::Problem problem = read_untrusted(path);
   const auto [ex, dg] = std::visit(
       [](const auto& p) {
         return std::make_pair(ipm::check_existence(p), ipm::diagnose(p));
@@ -496,7 +541,7 @@ int cmd_run(Args args) {
   for (const auto& path : args.positional) {
     fclib::Problem problem;
     try {
-      problem = fclib::read_problem(path);
+      problem = read_untrusted(path);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "fcsolve: skipping %s\n", e.what());
       continue;
@@ -509,7 +554,8 @@ int cmd_run(Args args) {
       o.request = registry::make_request(registry::find(name));
       o.request.common.tol = tol;
       o.request.common.max_time = max_time;
-      const registry::SolveOutcome out = solve_file(path, problem, o);
+      const registry::SolveOutcome out =
+          fclib::with_file_context(path, problem, [&] { return solve_file(path, problem, o); });
       ++runs;
       solved += out.info.converged();
       std::printf("%-40s %-6s %5ld %-14s %-15s %7d %10.3e %9.4f\n", basename(path).c_str(),

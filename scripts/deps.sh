@@ -4,6 +4,8 @@
 #   bash scripts/deps.sh            build + test dependencies
 #   bash scripts/deps.sh --peers    also Siconos 4.4 (python3-siconos), the peer
 #                                   the benchmark scripts compare against
+#   bash scripts/deps.sh --fuzz     also clang and its sanitizer runtimes
+#                                   (libFuzzer: fuzz/, .ci/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -14,9 +16,13 @@ packages=(
   python3-matplotlib                    # campaign reports (fcsolve report)
   python3-dask python3-distributed      # campaigns on a Dask cluster (fcsolve bench --dask)
 )
-if [[ "${1:-}" == "--peers" ]]; then
-  packages+=(python3-siconos)
-fi
+for option in "$@"; do
+  case "$option" in
+    --peers) packages+=(python3-siconos) ;;
+    --fuzz) packages+=(clang libclang-rt-dev) ;;
+    *) echo "deps.sh: unknown option $option (--peers, --fuzz)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

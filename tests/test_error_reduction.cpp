@@ -114,8 +114,9 @@ TEST_CASE("reduction matches dense linear algebra on every global problem", "[re
   }
 }
 
-TEST_CASE("reduction with bilateral constraints eliminates lambda", "[reduction]") {
-  // 3 dofs, 1 contact (d = 3), one bilateral constraint v0 - v2 = -b
+namespace {
+// 3 dofs, 1 contact (d = 3), one bilateral constraint v0 - v2 = -b
+GlobalProblem bilateral_problem(double b) {
   GlobalProblem g;
   g.d = 3;
   DenseMatrix M(3, 3);
@@ -129,9 +130,19 @@ TEST_CASE("reduction with bilateral constraints eliminates lambda", "[reduction]
   g.G = G.sparseView();
   g.f = Vector::LinSpaced(3, -1, 1);
   g.w = Vector::Constant(3, 0.1);
-  g.b = Vector::Constant(1, 0.25);
+  g.b = Vector::Constant(1, b);
   g.mu = Vector::Constant(1, 0.3);
   for (auto* A : {&g.M, &g.H, &g.G}) A->makeCompressed();
+  return g;
+}
+}  // namespace
+
+TEST_CASE("reduction with bilateral constraints eliminates lambda", "[reduction]") {
+  // b = 0 (a joint) is the common case: the error's scale must not vanish
+  // with the residual there (issue 15, item 4).
+  const double b = GENERATE(0.25, 0.0);
+  const GlobalProblem g = bilateral_problem(b);
+  const DenseMatrix M(g.M), H(g.H), G(g.G);
 
   GlobalReduction<> red(g);
   // dense Schur complement: W = H^T (Mi - Mi G S^-1 G^T Mi) H, S = G^T Mi G
@@ -150,6 +161,10 @@ TEST_CASE("reduction with bilateral constraints eliminates lambda", "[reduction]
   const GlobalErrorReport e = global_error_report(g, red.free_velocity_norm(), r, v, lambda);
   CHECK(e.equilibrium < 1e-14);
   CHECK(e.complementarity == Approx(local_error(red.local(), r)).epsilon(1e-10));
+
+  // a violated constraint still scores as one: v shifted along G
+  const Vector v_bad = v + 0.1 * G.col(0);
+  CHECK(global_error_report(g, red.free_velocity_norm(), r, v_bad, lambda).equilibrium > 1e-3);
 }
 
 TEST_CASE("reduction rejects a singular M", "[reduction]") {

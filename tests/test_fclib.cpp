@@ -325,7 +325,7 @@ TEST_CASE("malformed FCLIB input: one IoError per case, naming file and dataset"
     require_io_error(edited_local_file("spacedim_mismatch", [](H5::H5File& f) {
                        replace_dataset<int>(f, "fclib_local/spacedim", {2}, H5::PredType::NATIVE_INT);
                      }, "FC3D_Example1.hdf5"),
-                     "fclib_local/W");
+                     "fclib_local/vectors/q");  // the vectors, read first, set the sizes
   }
   SECTION("text where a number is expected") {
     require_io_error(edited_local_file("string_m", [](H5::H5File& f) {
@@ -367,6 +367,37 @@ TEST_CASE("malformed FCLIB input: one IoError per case, naming file and dataset"
     }
     require_io_error(path, "fclib_global/vectors/b");
   }
+}
+
+TEST_CASE("the hostile corpus: every file that must not read throws IoError naming it",
+          "[fclib][bad-input][hostile]") {
+  // tests/hostile/files/MANIFEST.json (written by make_hostile.py, indent 1):
+  //  "NAME.hdf5": {\n  "commands": "read",\n  "dataset": "fclib_local/W"\n },
+  std::ifstream manifest(std::string(FCSOLVE_HOSTILE_DATA) + "/MANIFEST.json");
+  REQUIRE(manifest);
+  std::string line, name, commands;
+  int checked = 0;
+  while (std::getline(manifest, line)) {
+    const auto quoted = [&](std::size_t from) {
+      const std::size_t a = line.find('"', from), b = line.find('"', a + 1);
+      return line.substr(a + 1, b - a - 1);
+    };
+    if (line.rfind(" \"", 0) == 0 && line.find(": {") != std::string::npos) name = quoted(0);
+    if (line.find("\"commands\"") != std::string::npos) commands = quoted(line.find(':'));
+    if (line.find("\"dataset\"") == std::string::npos || commands != "read") continue;
+    const std::string dataset = quoted(line.find(':'));
+    const std::string path = std::string(FCSOLVE_HOSTILE_DATA) + "/" + name;
+    INFO(name);
+    try {
+      (void)fclib::read_problem(path);
+      FAIL("read " << name << " without an error");
+    } catch (const IoError& e) {
+      CHECK(e.path() == path);
+      CHECK(std::string(e.what()).find(dataset) != std::string::npos);
+    }
+    ++checked;
+  }
+  CHECK(checked >= 20);
 }
 
 TEST_CASE("writing an invalid problem is refused before touching the file", "[fclib][bad-input]") {

@@ -308,7 +308,7 @@ TEST_CASE("Newton: warm start, callback, history and bad input", "[newton][api]"
     CHECK(nsn.info().iterations < cold);
   }
   SECTION("the callback stops the solve") {
-    nsn.settings().callback = [](const IterationInfo& it) { return it.iteration < 2; };
+    nsn.settings().callback = [](const IterationInfo& it) { return it.iteration >= 2; };
     r.setZero();
     nsn.solve(r, u);
     CHECK(nsn.info().status == Status::Stopped);

@@ -250,7 +250,7 @@ TEST_CASE("nsgs budgets, callback and history", "[nsgs]") {
     nsgs.settings().record_history = true;
     nsgs.settings().callback = [&](const IterationInfo& it) {
       seen.push_back(it);
-      return it.iteration < 5;
+      return it.iteration >= 5;  // true stops
     };
     nsgs.solve(r, u);
     CHECK(nsgs.info().status == Status::Stopped);

@@ -84,7 +84,7 @@ TEST_CASE("local validation: one case per rejected input", "[problem][bad-input]
     p.mu.resize(0);
     p.W.resize(0, 0);
     p.W.makeCompressed();
-    CHECK(rejected_field(p) == "q");
+    CHECK(rejected_field(p) == "W");  // the matrix sets the size
   }
   SECTION("m not a multiple of d") { p.q.resize(5); CHECK(rejected_field(p) == "q"); }
   SECTION("mu size") { p.mu.resize(3); p.mu.setConstant(0.1); CHECK(rejected_field(p) == "mu"); }
@@ -138,9 +138,14 @@ TEST_CASE("raw compressed arrays with a broken structure are rejected", "[proble
 TEST_CASE("global validation: one case per rejected input", "[problem][bad-input]") {
   GlobalProblem g = small_global();
   SECTION("empty problem") { g.f.resize(0); CHECK(rejected_field(g) == "f"); }
-  SECTION("no contacts") { g.w.resize(0); g.mu.resize(0); g.H.resize(4, 0); g.H.makeCompressed(); CHECK(rejected_field(g) == "w"); }
+  SECTION("no contacts") { g.w.resize(0); g.mu.resize(0); g.H.resize(4, 0); g.H.makeCompressed(); CHECK(rejected_field(g) == "H"); }
   SECTION("M not square") { g.M.conservativeResize(4, 3); g.M.makeCompressed(); CHECK(rejected_field(g) == "M"); }
   SECTION("H rows") { g.H.conservativeResize(3, 3); g.H.makeCompressed(); CHECK(rejected_field(g) == "H"); }
+  SECTION("short f: f is blamed, not M (M and H agree on n)") {
+    g.f.resize(3);
+    g.f.setOnes();
+    CHECK(rejected_field(g) == "f");
+  }
   SECTION("H columns") { g.H.conservativeResize(4, 6); g.H.makeCompressed(); CHECK(rejected_field(g) == "H"); }
   SECTION("w size") { g.w.resize(6); g.w.setZero(); g.mu.resize(2); g.mu.setConstant(0.1); CHECK(rejected_field(g) == "H"); }
   SECTION("NaN in M") { g.M.coeffRef(0, 0) = kNaN; CHECK(rejected_field(g) == "M"); }

@@ -99,7 +99,7 @@ TEST_CASE("VI solver statuses: max iterations, callback stop, warm start", "[vi]
   CHECK(info.error > 1e-12);
 
   ProjectedFixedPointSettings s;
-  s.callback = [](const IterationInfo& it) { return it.iteration < 3; };
+  s.callback = [](const IterationInfo& it) { return it.iteration >= 3; };
   ProjectedFixedPoint<Coulomb3D, SparseStorage<3>> solver(s);
   solver.compute(p);
   Vector r0 = Vector::Zero(p.size()), u(p.size());

@@ -42,6 +42,8 @@ def _csc_arguments(A, field):
 
 
 def _contact_dim(d):
+    if isinstance(d, (bool, np.bool_)):  # True is an int to operator.index
+        raise _invalid("d", f"contact dimension must be the integer 1, 2 or 3, got {d!r}")
     try:
         return operator.index(d)
     except TypeError:
@@ -55,8 +57,14 @@ def _friction(mu, size, d):
     return mu
 
 
-def _length(x):
-    return len(x) if np.ndim(x) == 1 else None
+def _finite(x, field):
+    """x unchanged, after checking it holds only finite real numbers: the
+    error of a NaN reaction is not a number to return silently."""
+    a = np.asarray(x)
+    if a.dtype.kind in "iuf" and not np.all(np.isfinite(a)):
+        k = int(np.flatnonzero(~np.isfinite(a.ravel()))[0])
+        raise _invalid(field, f"non-finite entry ({a.ravel()[k]}) at index {k}")
+    return x
 
 
 def _csc_view(arrays):
@@ -144,9 +152,10 @@ class LocalProblem(_Problem):
 
     def __init__(self, W, q, mu, d=3, *, title="", description="", math_info=""):
         d = _contact_dim(d)
+        W = _csc_arguments(W, "W")
+        # W sets the size (m = rows of W): a q of the wrong length is blamed, not mu
         self._data = _fcsolve.LocalProblemData(
-            d, _csc_arguments(W, "W"), q, _friction(mu, _length(q), d),
-            title, description, math_info)
+            d, W, q, _friction(mu, W[3][0], d), title, description, math_info)
 
     W = property(lambda self: self._matrix("W"),
                  doc="(m, m) Delassus operator: a scipy.sparse.csc_matrix over the problem's "
@@ -157,13 +166,13 @@ class LocalProblem(_Problem):
     def error(self, r):
         """The FCLIB relative error of reactions r: ||r - P_K(r - u~)|| / ||q||
         with u = W r + q (the measure of shared/tools/fcref.py)."""
-        return self._data.error(r)
+        return self._data.error(_finite(r, "r"))
 
     def error_report(self, r):
         """The error of r in several scalings, as a dict: error (FCLIB),
         siconos_error (||F|| / max(||q||, ||r||, ||u||)), absolute (||F||),
         max_contact (max over contacts / ||q||), worst_contact."""
-        return self._data.error_report(r)
+        return self._data.error_report(_finite(r, "r"))
 
     def __repr__(self):
         return (f"<fcsolve.LocalProblem d={self.d} nc={self.num_contacts} m={self.size} "
@@ -191,9 +200,11 @@ class GlobalProblem(_Problem):
     def __init__(self, M, H, f, w, mu, G=None, b=None, d=3, *, title="", description="",
                  math_info=""):
         d = _contact_dim(d)
+        H = _csc_arguments(H, "H")
+        # M and H set the sizes (n, m = columns of H): a short f or w is blamed
         self._data = _fcsolve.GlobalProblemData(
-            d, _csc_arguments(M, "M"), _csc_arguments(H, "H"), f, w,
-            _friction(mu, _length(w), d), None if G is None else _csc_arguments(G, "G"), b,
+            d, _csc_arguments(M, "M"), H, f, w,
+            _friction(mu, H[3][1], d), None if G is None else _csc_arguments(G, "G"), b,
             title, description, math_info)
 
     M = property(lambda self: self._matrix("M"),
@@ -221,12 +232,15 @@ class GlobalProblem(_Problem):
         equilibrium residual of M v = H r (+ G lambda) + f. v defaults to
         M^-1 (H r + f) (and lambda, with G, to its value given r). The
         factorisation of M is computed on the first call and kept."""
-        return self._data.error(r, v, multipliers)
+        return self._data.error(_finite(r, "r"), None if v is None else _finite(v, "v"),
+                                None if multipliers is None else _finite(multipliers, "multipliers"))
 
     def error_report(self, r, v=None, multipliers=None):
         """The error of (r, v) as a dict: error, complementarity, equilibrium,
         max_contact, worst_contact."""
-        return self._data.error_report(r, v, multipliers)
+        return self._data.error_report(
+            _finite(r, "r"), None if v is None else _finite(v, "v"),
+            None if multipliers is None else _finite(multipliers, "multipliers"))
 
     def __repr__(self):
         bilateral = f" p={self._data.b.size}" if self._data.b is not None else ""
@@ -234,19 +248,69 @@ class GlobalProblem(_Problem):
                 f"m={self.size}{bilateral} title={self.title!r}>")
 
 
-def load(path):
+def load(path, isolate=False):
     """Reads an FCLIB HDF5 file: a LocalProblem (/fclib_local) or a
     GlobalProblem (/fclib_global). Raises FileNotFoundError for a missing
     file and fcsolve.FclibError (an OSError naming the file and dataset) for
     a malformed one. The stored /solution and /guesses are read by
-    load_solution() and load_guesses()."""
+    load_solution() and load_guesses().
+
+    isolate=True: for files from untrusted sources. The HDF5 library itself
+    can crash or allocate without bound on corrupt metadata (fcsolve's own
+    checks come after it); the file is first read in a separate interpreter
+    (about 0.2 s), and a reader that dies raises FclibError here instead of
+    taking this process down."""
     path = os.fspath(path)
     if not os.path.exists(path):
         raise FileNotFoundError(errno.ENOENT, os.strerror(errno.ENOENT), path)
+    if isolate:
+        _probe_in_child(path)
     data = _fcsolve.load(path)
     if isinstance(data, _fcsolve.LocalProblemData):
         return LocalProblem._wrap(data)
     return GlobalProblem._wrap(data)
+
+
+_PROBE = """
+import json, resource, sys
+resource.setrlimit(resource.RLIMIT_AS, (4 << 30, 4 << 30))
+from fcsolve import _fcsolve
+try:
+    _fcsolve.load(sys.argv[1])
+except _fcsolve.FclibError as e:
+    print(json.dumps(dict(dataset=e.dataset, message=str(e))))
+    sys.exit(2)
+except BaseException as e:
+    print(json.dumps(dict(dataset="", message=f"{sys.argv[1]}: {type(e).__name__}: {e}")))
+    sys.exit(2)
+"""
+
+
+def _probe_in_child(path):
+    """Reads `path` in a child interpreter with a 4 GB memory limit. A clean
+    failure there is raised here as the same FclibError, without reading the
+    file in this process; a child that dies raises FclibError too."""
+    import json
+    import subprocess
+    import sys
+
+    package_root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        p for p in (package_root, os.environ.get("PYTHONPATH", "")) if p))
+    child = subprocess.run([sys.executable, "-c", _PROBE, path], env=env,
+                           capture_output=True, text=True)
+    if child.returncode == 0:
+        return
+    if child.returncode == 2 and child.stdout.strip():
+        report = json.loads(child.stdout.strip().splitlines()[-1])
+        dataset, message = report["dataset"], report["message"]
+    else:
+        how = (f"signal {-child.returncode}" if child.returncode < 0
+               else f"exit status {child.returncode}")
+        dataset, message = "", f"{path}: corrupt HDF5 metadata: the HDF5 library died reading it ({how})"
+    exc = _fcsolve.FclibError(message)
+    exc.path, exc.dataset = path, dataset
+    raise exc
 
 
 def _solution_arrays(solution, problem, what):

@@ -1,5 +1,6 @@
 """Solving: fcsolve.solve and the solver catalogue (fcsolve.solvers)."""
 
+import numbers
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -92,8 +93,10 @@ def solve(problem, solver="nsgs", tol=1e-8, max_iter=None, max_time=None, r0=Non
     r0, v0: warm start for r (and v for global problems); a previous Result
         may be passed as r0 (its r and v are used).
     callback: callable(iteration, error, seconds), called after each
-        iteration; returning False stops the solve (status 'stopped'). An
-        exception it raises stops the solve and is raised again.
+        iteration. SciPy's convention (scipy.optimize.minimize): returning
+        True or raising StopIteration stops the solve (status 'stopped');
+        None or False goes on. Any other exception it raises stops the solve
+        and is raised again.
     history: keep the error of every iteration in Result.history.
     **solver_settings: the solver's own settings (e.g. omega=1.2), checked:
         an unknown name or an out-of-range value raises fcsolve.UsageError (a
@@ -117,6 +120,11 @@ def solve(problem, solver="nsgs", tol=1e-8, max_iter=None, max_time=None, r0=Non
                         f"got {type(problem).__name__}") from None
     if isinstance(r0, Result):
         r0, v0 = r0.r, (r0.v if v0 is None else v0)
+    _check_number("tol", tol)
+    if max_time is not None:
+        _check_number("max_time", max_time)
+    if max_iter is not None and (isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral)):
+        raise TypeError(f"max_iter must be an integer or None, got {max_iter!r}")
     return impl(data, solver, tol, max_iter, max_time, r0, v0, callback, history,
                 solver_settings)
 
@@ -130,3 +138,10 @@ def _catalogue_doc():
 
 
 solve.__doc__ += _catalogue_doc()
+
+
+def _check_number(name, value):
+    """A real number (not a string, not a bool): pybind11's own message for
+    tol='1e-8' ("incompatible function arguments") names nothing."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")

@@ -272,7 +272,7 @@ double cpp_solve_seconds(const LocalProblemData& data, const std::string& solver
   const SolverEntry& e = registry::find(solver);
   registry::SolveRequest request = registry::make_request(e);
   request.common.tol = tol;
-  if (with_callback) request.common.callback = [](const IterationInfo&) { return true; };
+  if (with_callback) request.common.callback = [](const IterationInfo&) { return false; };
   const fcsolve::LocalProblemView view(data.problem);
   py::gil_scoped_release unlocked;
   fcsolve::Stopwatch clock;

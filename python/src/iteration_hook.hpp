@@ -14,36 +14,43 @@ namespace py = pybind11;
 /// callback (taking the GIL), and without one checks for Ctrl-C every
 /// kSignalCheckSeconds (or 1024 iterations), so a long solve can be
 /// interrupted while short ones never take the GIL.
-/// A Python exception (KeyboardInterrupt, or one raised by the callback)
-/// stops the solve; it is raised again once the solver has returned.
+/// SciPy's convention: the callback stops the solve by returning True or by
+/// raising StopIteration (status 'stopped'); None or False goes on. Any other
+/// Python exception (KeyboardInterrupt, or one raised by the callback) stops
+/// the solve and is raised again once the solver has returned.
 class PythonIterationHook {
  public:
   static constexpr double kSignalCheckSeconds = 0.05;
 
   explicit PythonIterationHook(py::object callback) : callback_(std::move(callback)) {}
 
+  /// True stops the solve (fcsolve::IterationCallback's convention).
   bool operator()(const fcsolve::IterationInfo& it) {
-    if (error_type_) return false;
+    if (error_type_) return true;
     if (callback_.is_none()) {
       // it.seconds is the solver's own clock (no second clock read per
       // iteration); the count covers a solver that leaves it at 0.
-      if (it.seconds < next_signal_check_ && (++calls_ & 1023) != 0) return true;
+      if (it.seconds < next_signal_check_ && (++calls_ & 1023) != 0) return false;
       next_signal_check_ = it.seconds + kSignalCheckSeconds;
       py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() == 0) return true;
+      if (PyErr_CheckSignals() == 0) return false;
       keep_pending_error();
-      return false;
+      return true;
     }
     py::gil_scoped_acquire gil;
     PyObject* answer = PyObject_CallFunction(callback_.ptr(), "idd", it.iteration, it.error, it.seconds);
-    int go_on = 1;
-    if (answer && answer != Py_None) go_on = PyObject_IsTrue(answer);
-    Py_XDECREF(answer);
-    if (!answer || go_on < 0 || PyErr_CheckSignals() != 0) {
-      keep_pending_error();
-      return false;
+    if (!answer && PyErr_ExceptionMatches(PyExc_StopIteration)) {
+      PyErr_Clear();  // a request to stop, not an error
+      return true;
     }
-    return go_on == 1;
+    int stop = 0;
+    if (answer && answer != Py_None) stop = PyObject_IsTrue(answer);
+    Py_XDECREF(answer);
+    if (!answer || stop < 0 || PyErr_CheckSignals() != 0) {
+      keep_pending_error();
+      return true;
+    }
+    return stop == 1;
   }
 
   /// Raises the exception that stopped the solve, if any (GIL held).

@@ -233,9 +233,9 @@ def test_accepted_inputs():
 BAD_LOCAL = [
     # (W, q, mu, d, field, message fragment)
     (np.eye(4), [-1, 0, 0], [0.5], 3, "W", "expected 3 x 3"),
-    (np.ones((3, 2)), [-1, 0, 0], [0.5], 3, "W", "expected 3 x 3"),
+    (np.ones((3, 2)), [-1, 0, 0], [0.5], 3, "W", "square"),
     (np.ones(3), [-1, 0, 0], [0.5], 3, "W", "2-D"),
-    (np.eye(3), [-1, 0, 0, 0], [0.5], 3, "q", "multiple"),
+    (np.eye(3), [-1, 0, 0, 0], [0.5], 3, "q", "expected 3 entries"),
     (np.eye(3), [[-1, 0, 0]], [0.5], 3, "q", "1-D"),
     (np.eye(3), [-1, 0, 0], [0.5, 0.5], 3, "mu", "expected 1 entries"),
     (np.eye(3), [-1, np.nan, 0], [0.5], 3, "q", "non-finite"),
@@ -249,7 +249,10 @@ BAD_LOCAL = [
     (np.eye(3, dtype=bool), [-1, 0, 0], [0.5], 3, "W", "dtype bool"),
     (np.eye(3), [-1, 0, 0], [0.5], 4, "spacedim", "1, 2 or 3"),
     (np.eye(3), [-1, 0, 0], [0.5], 2.5, "d", "integer"),
-    (np.zeros((0, 0)), [], [], 3, "q", "empty"),
+    (np.zeros((0, 0)), [], [], 3, "W", "empty"),
+    # the matrix sets the size: the vector of the wrong length is blamed
+    (np.eye(6), [-1, 0, 0, 0, 0], 0.5, 3, "q", "expected 6 entries"),
+    (np.eye(3), [-1, 0, 0], [0.5], True, "d", "integer"),
 ]
 
 
@@ -284,6 +287,33 @@ def test_bad_global_input_raises_a_clear_value_error(change, field):
     with pytest.raises(fcsolve.InvalidProblemError) as e:
         fcsolve.GlobalProblem(**parts)
     assert e.value.field == field, str(e.value)
+
+
+def test_short_f_is_blamed_not_M():
+    parts = global_parts(5)
+    parts.update(H=sp.identity(5).tocsc()[:, :3], w=np.zeros(3), f=np.ones(4))
+    with pytest.raises(fcsolve.InvalidProblemError) as e:
+        fcsolve.GlobalProblem(**parts)
+    assert e.value.field == "f" and "expected 5 entries" in str(e.value), str(e.value)
+
+
+def test_error_of_a_non_finite_r_raises():
+    P = fcsolve.LocalProblem(np.eye(3), [-1.0, 0.2, 0.0], [0.5])
+    for bad in ([np.nan, 0, 0], [0, np.inf, 0]):
+        with pytest.raises(fcsolve.InvalidProblemError) as e:
+            P.error(bad)
+        assert e.value.field == "r" and "non-finite" in str(e.value)
+        with pytest.raises(fcsolve.InvalidProblemError):
+            P.error_report(bad)
+
+
+@pytest.mark.parametrize("options", [dict(tol="1e-8"), dict(tol=True), dict(max_time="1"),
+                                     dict(max_iter=2.5), dict(max_iter=True)])
+def test_solve_options_of_the_wrong_type_name_the_option(options):
+    P = fcsolve.LocalProblem(np.eye(3), [-1.0, 0.2, 0.0], [0.5])
+    with pytest.raises(TypeError) as e:
+        fcsolve.solve(P, "nsgs", **options)
+    assert next(iter(options)) in str(e.value)
 
 
 def test_global_with_bilateral_constraints():

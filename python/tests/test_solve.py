@@ -153,7 +153,7 @@ def test_callback_sees_each_iteration_and_can_stop(solver):
 
     def callback(iteration, error, seconds):
         calls.append((iteration, error, seconds))
-        return iteration < 3
+        return iteration >= 3  # SciPy's convention: True stops
 
     res = fcsolve.solve(P, solver, tol=1e-14, max_iter=10000, callback=callback)
     if len(calls) == 0:
@@ -181,6 +181,25 @@ def test_callback_returning_none_goes_on_and_exceptions_propagate(solver):
     Q = real_problem(solver, "Confeti-ex03-Fc3D-SBM.hdf5")
     with pytest.raises(ZeroDivisionError, match="from the callback"):
         fcsolve.solve(Q, solver, tol=1e-14, callback=failing)
+
+
+@pytest.mark.parametrize("solver", solver_params())
+def test_callback_raising_stop_iteration_stops(solver):
+    P = real_problem(solver, "Confeti-ex03-Fc3D-SBM.hdf5")
+    seen = []
+
+    def stop_at_two(iteration, error, seconds):
+        seen.append(iteration)
+        if iteration >= 2:
+            raise StopIteration
+
+    res = fcsolve.solve(P, solver, tol=1e-14, max_iter=10000, callback=stop_at_two)
+    assert res.status == "stopped" and not res.converged, res
+    assert seen == [1, 2]
+    assert res.error == pytest.approx(error_of(P, res), rel=1e-10)
+    # False goes on, like None
+    res = fcsolve.solve(P, solver, tol=1e-14, max_iter=4, callback=lambda i, e, s: False)
+    assert res.status != "stopped", res
 
 
 @pytest.mark.parametrize("solver", solver_params())

@@ -10,8 +10,10 @@
 // and the reduced ||q|| = ||H^T M^-1 f + w|| (so a global problem and its
 // reduction score alike), and the equilibrium residual
 // ||M v - H r - G lambda - f|| / max(||f||, ||M v||, ||H r||, ||G lambda||)
-// (plus ||G^T v + b|| / max(||b||, ||G^T v||) with bilateral constraints);
-// the global error is the larger of the two.
+// (plus ||G^T v + b|| / max(||b||, ||G||_F ||v||) with bilateral
+// constraints: the scale must not vanish with the residual, or b = 0, the
+// common case of joints, would always score 1); the global error is the
+// larger of the two.
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
@@ -165,7 +167,9 @@ inline GlobalErrorReport global_error_report(const GlobalProblemView& p, double 
   out.equilibrium = residual.norm() / (denom > 0 ? denom : 1.0);
   if (p.has_bilateral()) {
     const Vector Gtv = p.G->transpose() * v;
-    const double bden = std::max(p.b->norm(), Gtv.norm());
+    // ||G||_F ||v|| bounds ||G^T v|| and is the size of its terms, so the
+    // ratio is small when G^T v + b cancels, also when b = 0.
+    const double bden = std::max(p.b->norm(), p.G->norm() * v.norm());
     out.equilibrium =
         std::max(out.equilibrium, (Gtv + *p.b).norm() / (bden > 0 ? bden : 1.0));
   }

@@ -20,7 +20,8 @@ struct IterationInfo {
   double seconds = 0;       ///< time since solve() started
 };
 
-/// Return false to stop the solve (Status::Stopped).
+/// Called after each iteration. SciPy's convention (scipy.optimize.minimize,
+/// `callback`): return true to stop the solve (Status::Stopped), false to go on.
 using IterationCallback = std::function<bool(const IterationInfo&)>;
 
 struct SolverSettings {
@@ -28,8 +29,13 @@ struct SolverSettings {
   int max_iter = 1000;
   double max_time = std::numeric_limits<double>::infinity();  ///< seconds
   bool record_history = false;  ///< keep the error of every iteration in info().history
-  IterationCallback callback;   ///< called once per iteration when set
+  IterationCallback callback;   ///< called once per iteration when set; true stops
 };
+
+/// True when a callback is set and asks to stop (returns true).
+inline bool callback_requests_stop(const IterationCallback& callback, const IterationInfo& it) {
+  return callback && callback(it);
+}
 
 struct SolverInfo {
   Status status = Status::NotRun;

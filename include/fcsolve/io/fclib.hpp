@@ -27,6 +27,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -121,9 +122,13 @@ class Reader {
     const H5::DataSet ds = open(name);
     if (ds.getTypeClass() != H5T_INTEGER) fail(name, "expected an integer dataset");
     if (count(name, ds) != 1) fail(name, "expected exactly one integer");
-    int value = 0;
-    guarded(name, [&] { ds.read(&value, H5::PredType::NATIVE_INT); return 0; });
-    return value;
+    check_storage(name, ds, 1);
+    // Read as 64 bits: HDF5 silently clips a wider value converted to int.
+    long long value = 0;
+    guarded(name, [&] { ds.read(&value, H5::PredType::NATIVE_LLONG); return 0; });
+    if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max())
+      fail(name, "value " + std::to_string(value) + " does not fit a 32-bit int");
+    return static_cast<int>(value);
   }
 
   /// An integer array of at least `min_count` entries (-1: any).
@@ -134,8 +139,16 @@ class Reader {
     if (min_count >= 0 && n < min_count)
       fail(name, "expected at least " + std::to_string(min_count) + " entries, found " +
                      std::to_string(n));
-    std::vector<int> out(static_cast<std::size_t>(n));
-    if (n > 0) guarded(name, [&] { ds.read(out.data(), H5::PredType::NATIVE_INT); return 0; });
+    check_storage(name, ds, n);
+    std::vector<long long> wide(static_cast<std::size_t>(n));
+    if (n > 0) guarded(name, [&] { ds.read(wide.data(), H5::PredType::NATIVE_LLONG); return 0; });
+    std::vector<int> out(wide.size());
+    for (std::size_t k = 0; k < wide.size(); ++k) {
+      if (wide[k] < std::numeric_limits<int>::min() || wide[k] > std::numeric_limits<int>::max())
+        fail(name, "value " + std::to_string(wide[k]) + " at index " + std::to_string(k) +
+                       " does not fit a 32-bit int");
+      out[k] = static_cast<int>(wide[k]);
+    }
     return out;
   }
 
@@ -148,6 +161,7 @@ class Reader {
     if (expected >= 0 && (at_least ? n < expected : n != expected))
       fail(name, "expected " + std::string(at_least ? "at least " : "") + std::to_string(expected) +
                      " entries, found " + std::to_string(n));
+    check_storage(name, ds, n);
     Vector out(static_cast<Index>(n));
     if (n > 0) guarded(name, [&] { ds.read(out.data(), H5::PredType::NATIVE_DOUBLE); return 0; });
     for (Index k = 0; k < out.size(); ++k)
@@ -161,6 +175,11 @@ class Reader {
     if (!exists(name)) return {};
     const H5::DataSet ds = open(name);
     if (ds.getTypeClass() != H5T_STRING) fail(name, "expected a string dataset");
+    // One string: reading an array of strings into one std::string overruns it.
+    if (count(name, ds) != 1) fail(name, "expected a single string, found an array");
+    if (ds.getStrType().getSize() > kMaxStringBytes && !ds.getStrType().isVariableStr())
+      fail(name, "string longer than " + std::to_string(kMaxStringBytes) + " bytes");
+    check_storage(name, ds, 1);
     return guarded(name, [&] {
       std::string s;
       ds.read(s, ds.getStrType());
@@ -169,9 +188,17 @@ class Reader {
     });
   }
 
-  SparseMatrix read_matrix(const std::string& g) const {
+  /// A sparse matrix declared `rows` x `cols`, which the caller knows from
+  /// the vectors already read: declared sizes are checked before anything is
+  /// allocated (a small file must not make us allocate gigabytes).
+  SparseMatrix read_matrix(const std::string& g, Index rows, Index cols) const {
+    if (!exists(g)) fail(g, "missing matrix group");
     const int m = read_int(g + "/m"), n = read_int(g + "/n"), nz = read_int(g + "/nz");
     if (m < 0 || n < 0) fail(g, "negative dimensions " + std::to_string(m) + " x " + std::to_string(n));
+    if (m != rows || n != cols)
+      fail(g, "declared " + std::to_string(m) + " x " + std::to_string(n) +
+                  ", but the problem's vectors make it " + std::to_string(rows) + " x " +
+                  std::to_string(cols));
     std::vector<Eigen::Triplet<double, int>> t;
     if (nz >= 0) {
       const std::vector<int> p = read_ints(g + "/p", nz), i = read_ints(g + "/i", nz);
@@ -188,8 +215,9 @@ class Reader {
     } else if (nz == -1 || nz == -2) {
       const bool by_column = nz == -1;
       const int outer = by_column ? n : m, inner = by_column ? m : n;
-      const std::vector<int> p = read_ints(g + "/p", outer + 1);
-      if (p[0] != 0) fail(g + "/p", "compressed pointers must start at 0");
+      // outer + 1 in 64 bits: n = INT_MAX must not wrap to "any length"
+      const std::vector<int> p = read_ints(g + "/p", static_cast<hssize_t>(outer) + 1);
+      if (p.empty() || p[0] != 0) fail(g + "/p", "compressed pointers must start at 0");
       for (int k = 0; k < outer; ++k)
         if (p[k + 1] < p[k]) fail(g + "/p", "compressed pointers decrease at " + std::to_string(k));
       const int nnz = p[outer];
@@ -238,6 +266,41 @@ class Reader {
   const H5::H5File& file() const { return file_; }
 
  private:
+  static constexpr std::size_t kMaxStringBytes = std::size_t(1) << 20;
+  static constexpr double kMaxUnstoredBytes = double(1 << 26);  // 64 MB
+
+  /// The data a dataset declares must be in the file: a few-kB file must not
+  /// declare (and make us allocate or read) gigabytes. Unfiltered data must
+  /// be stored in full, and within the file, except for up to
+  /// kMaxUnstoredBytes that HDF5 fills with the fill value (real files have
+  /// them: Siconos creates /solution/r and never writes it); compressed data
+  /// may not expand more than 1000-fold (a decompression bomb).
+  void check_storage(const std::string& name, const H5::DataSet& ds, hssize_t n) const {
+    if (n <= 0) return;
+    guarded(name, [&] {
+      const std::size_t element = ds.getDataType().getSize();
+      if (element == 0 || element > 4096) fail(name, "unsupported element size");
+      const double declared = double(n) * double(element);
+      const double stored = double(ds.getStorageSize());
+      const H5::DSetCreatPropList dcpl = ds.getCreatePlist();
+      const bool filtered = dcpl.getNfilters() > 0;
+      const bool variable = ds.getDataType().isVariableStr();
+      if (!variable && !filtered && stored < declared && declared > kMaxUnstoredBytes)
+        fail(name, "declares " + std::to_string(n) + " entries but the file stores only " +
+                       std::to_string(static_cast<long long>(stored)) + " bytes of them");
+      if (filtered && declared > 1000.0 * stored + 1e6)
+        fail(name, "compressed data expands more than 1000-fold");
+      if (dcpl.getLayout() == H5D_CONTIGUOUS && !variable) {
+        const haddr_t offset = H5Dget_offset(ds.getId());
+        hsize_t file_size = 0;
+        H5Fget_filesize(file_.getId(), &file_size);
+        if (offset != HADDR_UNDEF && double(offset) + declared > double(file_size))
+          fail(name, "data extends past the end of the file (truncated?)");
+      }
+      return 0;
+    });
+  }
+
   static bool fits(const int* rows, const int* cols, int nz, int m, int n) {
     for (int k = 0; k < nz; ++k)
       if (rows[k] < 0 || rows[k] >= m || cols[k] < 0 || cols[k] >= n) return false;
@@ -248,15 +311,26 @@ class Reader {
   H5::H5File file_;
 };
 
+/// The dataset of `group` (fclib_local or fclib_global) that a validation
+/// field (InvalidProblem::field(): W, q, M, f, ...) is read from.
+inline std::string dataset_of(const std::string& group, const std::string& field) {
+  const bool vector = field == "q" || field == "mu" || field == "f" || field == "w" || field == "b";
+  return group + "/" + (vector ? "vectors/" : "") + field;
+}
+
+/// InvalidProblem's message without its "field: " prefix.
+inline std::string reason_of(const InvalidProblem& e) {
+  const std::string what = e.what(), prefix = e.field() + ": ";
+  return what.compare(0, prefix.size(), prefix) == 0 ? what.substr(prefix.size()) : what;
+}
+
 /// Re-throws a validation failure as an IoError naming the dataset.
 template <class View>
 void validate_read(const Reader& in, const std::string& group, const View& view) {
   try {
     validate(view);
   } catch (const InvalidProblem& e) {
-    const std::string& f = e.field();
-    const bool vector = f == "q" || f == "mu" || f == "f" || f == "w" || f == "b";
-    in.fail(group + "/" + (vector ? "vectors/" : "") + f, e.what());
+    in.fail(dataset_of(group, e.field()), reason_of(e));
   }
 }
 
@@ -367,13 +441,15 @@ inline LocalProblem read_local(const std::string& path) {
     in.fail(g + "/V", "mixed local problems (V, R, s) are not supported");
   LocalProblem p;
   p.d = in.read_spacedim(g);
-  p.W = in.read_matrix(g + "/W");
-  const Index m = p.W.rows();
-  p.q = in.read_doubles(g + "/vectors/q", m);
+  // Vectors first: their lengths (data present in the file) bound the
+  // matrix sizes the file declares.
+  p.q = in.read_doubles(g + "/vectors/q", -1);
+  const Index m = p.q.size();
   if (m % p.d != 0)
-    in.fail(g + "/W", "size " + std::to_string(m) + " is not a multiple of spacedim " +
-                          std::to_string(p.d));
+    in.fail(g + "/vectors/q", "length " + std::to_string(m) + " is not a multiple of spacedim " +
+                                  std::to_string(p.d));
   p.mu = in.read_doubles(g + "/vectors/mu", m / p.d);
+  p.W = in.read_matrix(g + "/W", m, m);
   p.text = in.read_text(g);
   detail::validate_read(in, g, LocalProblemView(p));
   return p;
@@ -385,20 +461,20 @@ inline GlobalProblem read_global(const std::string& path) {
   if (!in.exists(g)) in.fail(g, "missing group (not a global FCLIB problem)");
   GlobalProblem p;
   p.d = in.read_spacedim(g);
-  p.M = in.read_matrix(g + "/M");
-  p.H = in.read_matrix(g + "/H");
-  const Index n = p.M.rows(), m = p.H.cols();
-  if (p.H.rows() != n)
-    in.fail(g + "/H", "has " + std::to_string(p.H.rows()) + " rows, M has " + std::to_string(n));
-  p.f = in.read_doubles(g + "/vectors/f", n);
-  p.w = in.read_doubles(g + "/vectors/w", m);
+  // Vectors first: their lengths (data present in the file) bound the
+  // matrix sizes the file declares.
+  p.f = in.read_doubles(g + "/vectors/f", -1);
+  p.w = in.read_doubles(g + "/vectors/w", -1);
+  const Index n = p.f.size(), m = p.w.size();
   if (m % p.d != 0)
-    in.fail(g + "/H", "column count " + std::to_string(m) + " is not a multiple of spacedim " +
-                          std::to_string(p.d));
+    in.fail(g + "/vectors/w", "length " + std::to_string(m) + " is not a multiple of spacedim " +
+                                  std::to_string(p.d));
   p.mu = in.read_doubles(g + "/vectors/mu", m / p.d);
+  p.M = in.read_matrix(g + "/M", n, n);
+  p.H = in.read_matrix(g + "/H", n, m);
   if (in.exists(g + "/G")) {
-    p.G = in.read_matrix(g + "/G");
-    p.b = in.read_doubles(g + "/vectors/b", p.G.cols());
+    p.b = in.read_doubles(g + "/vectors/b", -1);
+    p.G = in.read_matrix(g + "/G", n, p.b.size());
   }
   p.text = in.read_text(g);
   detail::validate_read(in, g, GlobalProblemView(p));
@@ -408,6 +484,25 @@ inline GlobalProblem read_global(const std::string& path) {
 inline Problem read_problem(const std::string& path) {
   if (detect_kind(path) == Kind::Local) return read_local(path);
   return read_global(path);
+}
+
+/// Runs f() on a problem read from `path`; an InvalidProblem it throws
+/// (e.g. a singular M found when factorising) becomes an IoError naming the
+/// file and the dataset, as a reading error would.
+template <class F>
+decltype(auto) with_file_context(const std::string& path, const Problem& problem, F&& f) {
+  try {
+    return f();
+  } catch (const InvalidProblem& e) {
+    const std::string group =
+        std::holds_alternative<LocalProblem>(problem) ? "fclib_local" : "fclib_global";
+    const std::string& field = e.field();
+    const bool in_file = field == "W" || field == "q" || field == "mu" || field == "M" ||
+                         field == "H" || field == "G" || field == "f" || field == "w" ||
+                         field == "b";
+    if (!in_file) throw;
+    throw IoError(path, detail::dataset_of(group, field), detail::reason_of(e));
+  }
 }
 
 /// The /solution group, if any (vectors not checked against a problem).

@@ -156,6 +156,10 @@ class AclmSolver : public IpmSolverBase<Form> {
       restart_from(it, s, next);
       s = next;
     }
+    if (best_r.size() == 0) {  // no inner run (the time budget was spent at once): the start
+      this->extract(it, best_r, best_w);
+      best_error = this->form_->error(it, false);
+    }
     r = best_r;
     w = best_w;
     info.iterations = total;

@@ -202,7 +202,7 @@ class InteriorPoint {
       // steps numbered 1, 2, ... (continued across ACLM's inner runs).
       if (opt.callback && k > 0) {
         IterationInfo info{opt.iteration_offset + k, err, true, opt.seconds_offset + clock.seconds()};
-        if (!opt.callback(info)) {
+        if (callback_requests_stop(opt.callback, info)) {
           rep.exit = IpmExit::Stopped;
           break;
         }

@@ -177,8 +177,8 @@ class NewtonLoop {
   /// History and callback; false when the callback asks to stop.
   bool record(double error, const Stopwatch& clock) {
     if (settings_.record_history) info_.history.push_back(error);
-    if (settings_.callback &&
-        !settings_.callback(IterationInfo{info_.iterations, error, true, clock.seconds()})) {
+    if (callback_requests_stop(settings_.callback,
+                               IterationInfo{info_.iterations, error, true, clock.seconds()})) {
       info_.status = Status::Stopped;
       return false;
     }

@@ -177,7 +177,7 @@ class Nsgs {
         }
       }
       if (s.record_history) info_.history.push_back(estimate);
-      if (s.callback && !s.callback(IterationInfo{sweep_no, estimate, full, clock.seconds()})) {
+      if (callback_requests_stop(s.callback, IterationInfo{sweep_no, estimate, full, clock.seconds()})) {
         status = Status::Stopped;
         break;
       }

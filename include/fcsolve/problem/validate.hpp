@@ -65,7 +65,8 @@ inline void check_vector(const VectorMap& v, Index size, const std::string& fiel
   check_finite(v.data(), v.size(), field);
 }
 
-inline void check_contacts(int d, Index m, const VectorMap& mu, const char* size_field) {
+/// The contact dimension, and m = d * nc unknowns (m read from `size_field`).
+inline void check_contact_size(int d, Index m, const char* size_field) {
   if (d < 1 || d > 3)
     throw InvalidProblem("spacedim", "contact dimension must be 1, 2 or 3, got " + std::to_string(d));
   if (m == 0) throw InvalidProblem(size_field, "empty problem: no contact unknowns");
@@ -73,36 +74,47 @@ inline void check_contacts(int d, Index m, const VectorMap& mu, const char* size
     throw InvalidProblem(size_field, "size " + std::to_string(m) +
                                          " is not a multiple of the contact dimension " +
                                          std::to_string(d));
-  check_vector(mu, m / d, "mu", "one friction coefficient per contact, m / d");
+}
+inline void check_friction(const VectorMap& mu, Index nc) {
+  check_vector(mu, nc, "mu", "one friction coefficient per contact, m / d");
   for (Index k = 0; k < mu.size(); ++k)
     if (mu[k] < 0)
       throw InvalidProblem("mu", "negative friction coefficient " + std::to_string(mu[k]) +
                                      " at contact " + std::to_string(k));
 }
-
 }  // namespace detail
 
+// The matrices set the sizes (W: m; M: n; H: n x m; G: n x p), so that a
+// vector of the wrong length is the one blamed, unless the other two sources
+// of the same size agree against the matrix (then the matrix is blamed).
 inline void validate(const LocalProblemView& p) {
-  const Index m = p.q.size();
-  detail::check_contacts(p.d, m, p.mu, "q");
-  detail::check_vector(p.q, m, "q", "m");
-  detail::check_matrix(p.W, m, m, "W", "square, m = size of q");
+  Index m = p.W.rows();
+  if (p.d >= 1 && p.q.size() == p.d * p.mu.size() && p.q.size() != m) m = p.q.size();
+  if (p.W.rows() == m && p.W.cols() != m)
+    throw InvalidProblem("W", "expected a square matrix, got " + detail::shape(m, p.W.cols()));
+  detail::check_contact_size(p.d, m, "W");
+  detail::check_matrix(p.W, m, m, "W", "square, m = size of q = d * size of mu");
+  detail::check_vector(p.q, m, "q", "m = rows of W");
+  detail::check_friction(p.mu, m / p.d);
 }
 
 inline void validate(const GlobalProblemView& p) {
-  const Index n = p.f.size(), m = p.w.size();
-  if (n == 0) throw InvalidProblem("f", "empty problem: no degrees of freedom");
-  detail::check_contacts(p.d, m, p.mu, "w");
-  detail::check_vector(p.f, n, "f", "n");
-  detail::check_vector(p.w, m, "w", "m");
-  detail::check_matrix(p.M, n, n, "M", "square, n = size of f");
-  detail::check_matrix(p.H, n, m, "H", "n = size of f, m = size of w");
+  Index n = p.M.rows(), m = p.H.cols();
+  if (p.H.rows() == p.f.size() && p.f.size() != n) n = p.f.size();
+  if (p.d >= 1 && p.w.size() == p.d * p.mu.size() && p.w.size() != m) m = p.w.size();
+  if (n == 0) throw InvalidProblem("M", "empty problem: no degrees of freedom");
+  detail::check_contact_size(p.d, m, "H");
+  detail::check_matrix(p.M, n, n, "M", "square, n = rows of H = size of f");
+  detail::check_matrix(p.H, n, m, "H", "n = rows of M, m = size of w");
+  detail::check_vector(p.f, n, "f", "n = rows of M");
+  detail::check_vector(p.w, m, "w", "m = columns of H");
+  detail::check_friction(p.mu, m / p.d);
   if (p.G.has_value() != p.b.has_value())
     throw InvalidProblem(p.G ? "b" : "G", "G and b must be given together");
   if (p.G) {
     const Index np = p.b->size();
     detail::check_vector(*p.b, np, "b", "p");
-    detail::check_matrix(*p.G, n, np, "G", "n = size of f, p = size of b");
+    detail::check_matrix(*p.G, n, np, "G", "n = rows of M, p = size of b");
   }
 }
 

@@ -96,8 +96,8 @@ class ProjectedFixedPoint {
       if (ratio < settings_.ratio_min) rho /= settings_.shrink;
       if (!std::isfinite(error)) { info_.status = Status::NumericalError; break; }
       if (settings_.record_history) info_.history.push_back(error);
-      if (settings_.callback &&
-          !settings_.callback(IterationInfo{k, error, true, clock.seconds()})) {
+      if (callback_requests_stop(settings_.callback,
+                                 IterationInfo{k, error, true, clock.seconds()})) {
         info_.status = Status::Stopped;
         break;
       }

@@ -14,7 +14,8 @@ For FC/I, q is the reduced problem's q = H^T M^-1 f + w (the free velocity),
 so a global problem and its reduction score alike, and the error is the larger
 of that and the equilibrium residual ||M v - H r - G l - f|| / max(||f||,
 ||M v||, ||H r||, ||G l||) (with bilateral constraints G^T v + b = 0 also
-||G^T v + b|| / max(||b||, ||G^T v||)). d = 3 and 2 are Coulomb cones, d = 1
+||G^T v + b|| / max(||b||, ||G||_F ||v||), a scale that does not vanish
+with the residual when b = 0). d = 3 and 2 are Coulomb cones, d = 1
 is frictionless (K = R+, u~ = u).
 """
 import functools
@@ -179,7 +180,8 @@ def error(problem, r, v=None, lam=None):
         residual = residual - Gl
         scales.append(np.linalg.norm(Gl))
         bilateral = _relative(np.linalg.norm(Gtv + problem.b),
-                              np.linalg.norm(problem.b), np.linalg.norm(Gtv))
+                              np.linalg.norm(problem.b),
+                              sp.linalg.norm(problem.G) * np.linalg.norm(v))
     equil = _relative(float(np.linalg.norm(residual)), *scales)
     return max(comp, equil, bilateral)
 

@@ -1,0 +1,200 @@
+// The solver contract, checked for every catalogue entry (issue 15): on the
+// bundled problems and on small cases of every kind it applies to (3D, 2D,
+// frictionless, one contact, mu = 0, bilateral constraints with b = 0 and
+// b != 0), each entry
+//   - returns r, u (and v, lambda) of the problem's sizes;
+//   - reports an honest status: "converged" only when the error recomputed
+//     here is within tol, and the registry's own re-check never has to
+//     downgrade a claim;
+//   - restarted from its own solution, converges again at once;
+//   - rejects a NaN in the warm start with a clear error;
+//   - honours max_time (0 and a tiny budget): it returns, sizes and status honest;
+//   - gives bit-identical results on two identical runs.
+// An entry that does not apply to a kind of problem says so with a UsageError.
+#include "test_support.hpp"
+
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/io/fclib.hpp>
+#include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/solvers/catalog.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <variant>
+#include <vector>
+
+using namespace fcsolve;
+
+namespace {
+
+using AnyProblem = std::variant<LocalProblem, GlobalProblem>;
+
+struct Case {
+  std::string name;
+  AnyProblem problem;
+};
+
+/// A well-conditioned symmetric positive definite W of size m.
+DenseMatrix spd(Index m, unsigned seed) {
+  std::srand(seed);
+  const DenseMatrix A = DenseMatrix::Random(m, m);
+  return A * A.transpose() / double(m) + DenseMatrix::Identity(m, m);
+}
+
+LocalProblem local_case(int d, Index nc, double mu, unsigned seed) {
+  LocalProblem p;
+  p.d = d;
+  const Index m = d * nc;
+  p.W = spd(m, seed).sparseView();
+  p.W.makeCompressed();
+  std::srand(seed + 1);
+  p.q = Vector::Random(m);
+  for (Index a = 0; a < nc; ++a) p.q[a * d] = -std::abs(p.q[a * d]) - 0.1;  // pressing contacts
+  p.mu = Vector::Constant(nc, mu);
+  return p;
+}
+
+/// A one-body, two-contact global problem with one bilateral constraint.
+GlobalProblem bilateral_case(double b) {
+  GlobalProblem g;
+  g.d = 3;
+  const Index n = 6, m = 6;
+  g.M = spd(n, 7).sparseView();
+  DenseMatrix H = DenseMatrix::Identity(n, m);
+  H(3, 1) = 0.2;
+  g.H = H.sparseView();
+  DenseMatrix G = DenseMatrix::Zero(n, 1);
+  G(1, 0) = 1;
+  G(4, 0) = -1;
+  g.G = G.sparseView();
+  g.f = Vector::Zero(n);
+  g.f << -1, 0.3, -0.2, -2, 0.1, 0.4;
+  g.w = Vector::Zero(m);
+  g.b = Vector::Constant(1, b);
+  g.mu = Vector::Constant(2, 0.4);
+  for (auto* A : {&g.M, &g.H, &g.G}) A->makeCompressed();
+  return g;
+}
+
+std::vector<Case> contract_cases() {
+  std::vector<Case> cases;
+  cases.push_back({"Rover1039 (3D)", fclib::read_local(fcsolve_test::bundled("Rover1039.hdf5"))});
+  cases.push_back({"FC3D_Example1 (3D)", fclib::read_local(fcsolve_test::bundled("FC3D_Example1.hdf5"))});
+  cases.push_back({"GFC3D_Example1 (FC/I)", fclib::read_global(fcsolve_test::bundled("GFC3D_Example1.hdf5"))});
+  cases.push_back({"3D, one contact", local_case(3, 1, 0.3, 11)});
+  cases.push_back({"3D, mu = 0", local_case(3, 4, 0.0, 12)});
+  cases.push_back({"2D", local_case(2, 5, 0.5, 13)});
+  cases.push_back({"frictionless", local_case(1, 6, 0.0, 14)});
+  cases.push_back({"FC/I, G with b = 0", bilateral_case(0.0)});
+  cases.push_back({"FC/I, G with b != 0", bilateral_case(0.3)});
+  return cases;
+}
+
+registry::SolveOutcome run(const AnyProblem& problem, const registry::SolverEntry& e,
+                           const registry::SolveRequest& req) {
+  return std::visit(
+      [&](const auto& p) {
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, LocalProblem>) return registry::solve(LocalProblemView(p), e, req);
+        else return registry::solve(GlobalProblemView(p), e, req);
+      },
+      problem);
+}
+
+/// The error of what a solve returned, recomputed here from the problem.
+double recomputed_error(const AnyProblem& problem, const registry::SolveOutcome& out) {
+  if (const auto* lp = std::get_if<LocalProblem>(&problem)) return local_error(*lp, out.r);
+  const auto& g = std::get<GlobalProblem>(problem);
+  const GlobalReduction<> reduction{GlobalProblemView(g), /*form_W=*/false};
+  return global_error_report(g, reduction.free_velocity_norm(), out.r, out.v, out.lambda).error;
+}
+
+void check_sizes(const AnyProblem& problem, const registry::SolveOutcome& out) {
+  std::visit(
+      [&](const auto& p) {
+        CHECK(out.r.size() == p.size());
+        CHECK(out.u.size() == p.size());
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, GlobalProblem>) {
+          CHECK(out.v.size() == p.num_dofs());
+          CHECK(out.lambda.size() == (p.has_bilateral() ? p.G.cols() : 0));
+        }
+      },
+      problem);
+}
+
+void check_honest(const AnyProblem& problem, const registry::SolveOutcome& out, double tol) {
+  INFO("status " << to_string(out.info.status) << ", message: " << out.info.message);
+  CHECK(out.info.status != Status::NotRun);
+  CHECK(out.info.message.find("claimed convergence") == std::string::npos);
+  if (!out.r.allFinite()) return;  // a numerical failure may return non-finite r
+  const double e = recomputed_error(problem, out);
+  if (out.info.converged()) CHECK(e <= tol);
+  if (std::isfinite(e)) CHECK(out.info.error == Approx(e).epsilon(1e-8).margin(1e-300));
+}
+
+}  // namespace
+
+TEST_CASE("every catalogue entry honours the solver contract", "[contract][catalogue]") {
+  const std::vector<Case> cases = contract_cases();
+  const double tol = 1e-8;
+  int applicable = 0;
+  for (const auto& e : registry::entries()) {
+    for (const auto& c : cases) {
+      INFO("solver " << e.name << " on " << c.name);
+      registry::SolveRequest req = registry::make_request(e);
+      req.common.tol = tol;
+      req.common.max_time = 20;
+      registry::SolveOutcome first;
+      try {
+        first = run(c.problem, e, req);
+      } catch (const UsageError& u) {
+        // does not apply: it must say so clearly
+        CHECK(std::string(u.what()).size() > 10);
+        continue;
+      }
+      ++applicable;
+      check_sizes(c.problem, first);
+      check_honest(c.problem, first, tol);
+
+      // deterministic: a second identical run is bit-identical
+      const registry::SolveOutcome second = run(c.problem, e, req);
+      CHECK(second.info.status == first.info.status);
+      CHECK(second.info.iterations == first.info.iterations);
+      CHECK(second.r.size() == first.r.size());
+      if (second.r.size() == first.r.size()) CHECK((second.r.array() == first.r.array()).all());
+
+      // restarted from its own solution, it converges at once
+      if (first.info.converged()) {
+        registry::SolveRequest warm = req;
+        warm.r0 = first.r;
+        warm.v0 = first.v;
+        const registry::SolveOutcome again = run(c.problem, e, warm);
+        check_honest(c.problem, again, tol);
+        CHECK(again.info.converged());
+        CHECK(again.info.iterations <= 3);
+      }
+
+      // a NaN in the warm start is refused with an error naming it
+      registry::SolveRequest nan = req;
+      nan.r0 = Vector::Zero(first.r.size());
+      nan.r0[0] = std::numeric_limits<double>::quiet_NaN();
+      CHECK_THROWS_AS(run(c.problem, e, nan), InvalidProblem);
+
+      // a time budget of 0 and a tiny one: it returns, sizes and status honest
+      for (double budget : {0.0, 1e-5}) {
+        INFO("max_time " << budget);
+        registry::SolveRequest timed = req;
+        timed.common.max_time = budget;
+        timed.common.tol = 1e-13;  // out of reach in so little time, bar exact solutions
+        const registry::SolveOutcome out = run(c.problem, e, timed);
+        check_sizes(c.problem, out);
+        check_honest(c.problem, out, timed.common.tol);
+      }
+    }
+  }
+  CHECK(applicable >= int(registry::entries().size()));  // each applies somewhere
+}
