@@ -3,7 +3,7 @@
 // through its user header, warm-started from the previous step's reactions.
 //
 //   mbs_pile [--spheres N] [--steps K] [--seed S] [--mu X] [--theta T] [--dt H]
-//            [--tol X] [--max-iter N] [--restitution E] [--beta B]
+//            [--tol X] [--max-iter N] [--restitution E] [--beta B] [--slop S]
 //            [--no-warm-start] [--quiet] [--dump STEP FILE.hdf5] [--dump-local FILE.hdf5]
 //
 // Prints one line per step (step, contacts, iterations, error, time) and a
@@ -52,7 +52,12 @@ using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 using Triplet = Eigen::Triplet<double, int>;
 
+// Scene constants (SI units): spheres of radius 0.8..1.2 R0, density rho.
+constexpr double kR0 = 0.05, kDensity = 1000.0, kGravity = 9.81;
+constexpr int kWalls = 5;  // floor, x = 0, x = L, y = 0, y = L (the box is open on top)
+
 struct Parameters {
+  Parameters() { law.slop = 0.005 * kR0; }
   long spheres = 200, steps = 200, seed = 1;
   double mu = 0.5, theta = 0.5, h = 2e-3, tol = 1e-8;
   long max_iter = 10000;
@@ -61,10 +66,6 @@ struct Parameters {
   long dump_step = -1;
   std::string dump_file, dump_local_file;
 };
-
-// Scene constants (SI units): spheres of radius 0.8..1.2 R0, density rho.
-constexpr double kR0 = 0.05, kDensity = 1000.0, kGravity = 9.81;
-constexpr int kWalls = 5;  // floor, x = 0, x = L, y = 0, y = L (the box is open on top)
 
 /// A 32-bit Mersenne twister is specified bit for bit by the standard (its
 /// distributions are not): uniform numbers from its raw output keep the scene
@@ -265,6 +266,7 @@ Parameters parse(int argc, char** argv) {
   p.max_iter = o.integer("max-iter", p.max_iter);
   p.law.restitution = o.real("restitution", p.law.restitution);
   p.law.beta = o.real("beta", p.law.beta);
+  p.law.slop = o.real("slop", p.law.slop);
   p.warm_start = !o.flag("no-warm-start");
   p.quiet = o.flag("quiet");
   const auto dump = o.values("dump", 2);
@@ -288,9 +290,9 @@ int run(const Parameters& p) {
   Pile pile(p);
   const Index n = pile.dofs();
   std::printf("# mbs_pile spheres=%ld steps=%ld seed=%ld mu=%g theta=%g dt=%g tol=%g box=%.3f "
-              "restitution=%g beta=%g warm_start=%d\n",
+              "restitution=%g beta=%g slop=%g warm_start=%d\n",
               p.spheres, p.steps, p.seed, p.mu, p.theta, p.h, p.tol, pile.box(), p.law.restitution,
-              p.law.beta, int(p.warm_start));
+              p.law.beta, p.law.slop, int(p.warm_start));
   stepping::StepLog log(p.quiet);
   stepping::WarmStart warm;
   // One solver for the whole trajectory: BSR storage of W (row products for
@@ -373,12 +375,13 @@ int run(const Parameters& p) {
                                  std::to_string(p.seed) + " mu=" + std::to_string(p.mu) +
                                  " theta=" + std::to_string(p.theta) + " dt=" + std::to_string(p.h) +
                                  " restitution=" + std::to_string(p.law.restitution) +
-                                 " beta=" + std::to_string(p.law.beta) + " step=" + std::to_string(step);
+                                 " beta=" + std::to_string(p.law.beta) + " slop=" +
+                                 std::to_string(p.law.slop) + " step=" + std::to_string(step);
       global.text.title = "mbs_pile step " + std::to_string(step);
       global.text.description = "fcsolve examples/mbs_pile.cpp: spheres falling into an open box; " + params;
       global.text.math_info =
           "Moreau-Jean step: M v+ = f + H r, f = M v + h f_ext, u = H^T v+ + w, "
-          "w_N = e min(u_N,0) + beta min(gap,0)/h; solution: NSGS on W = H^T M^-1 H";
+          "w_N = e min(u_N,0) + beta min(gap+slop,0)/h; solution: NSGS on W = H^T M^-1 H";
       stepping::dump_global(p.dump_file, global, r, V_next);
       if (!p.dump_local_file.empty()) {
         local.text = global.text;
