@@ -322,7 +322,7 @@ int run(const Parameters& p) {
 
     Vector V_next = V_free;
     if (nc == 0) {
-      log.step(step, 0, 0, 0.0, 0.0, "no-contact", true);
+      log.step(step, 0, 0, 0.0, 0.0, 0.0, "no-contact", true);
       warm.clear();
       pile.advance(V_next);
       continue;
@@ -350,7 +350,8 @@ int run(const Parameters& p) {
     nsgs.compute(local);
     const fcsolve::SolverInfo& info = nsgs.solve(r, u);
     const double seconds = clock.seconds();
-    log.step(step, nc, info.iterations, info.error, seconds, fcsolve::to_string(info.status),
+    log.step(step, nc, info.iterations, info.error, seconds, info.setup_seconds,
+             fcsolve::to_string(info.status),
              info.converged());
 
     V_next += minv.cwiseProduct(H * r);  // v+ = v_free + M^-1 H r
