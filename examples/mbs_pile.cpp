@@ -53,7 +53,7 @@ using Mat3 = Eigen::Matrix3d;
 using Triplet = Eigen::Triplet<double, int>;
 
 // Scene constants (SI units): spheres of radius 0.8..1.2 R0, density rho.
-constexpr double kR0 = 0.05, kDensity = 1000.0, kGravity = 9.81;
+constexpr double kR0 = 0.05, kDensity = 1000.0, kGravity = 9.81, kPi = 3.14159265358979323846;
 constexpr int kWalls = 5;  // floor, x = 0, x = L, y = 0, y = L (the box is open on top)
 
 struct Parameters {
@@ -125,7 +125,7 @@ class Pile {
       const long layer = i / (side_ * side_), col = (i / side_) % side_, row = i % side_;
       const double R = kR0 * uni(0.8, 1.2);
       radius_[i] = R;
-      mass_[i] = kDensity * 4.0 / 3.0 * M_PI * R * R * R;
+      mass_[i] = kDensity * 4.0 / 3.0 * kPi * R * R * R;
       const double J = 0.4 * mass_[i] * R * R;
       minv_.segment<3>(6 * i).setConstant(1.0 / mass_[i]);
       minv_.segment<3>(6 * i + 3).setConstant(1.0 / J);
