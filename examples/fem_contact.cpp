@@ -66,7 +66,7 @@ struct Parameters {
   double size_x = 0.4, size_y = 0.4, size_z = 0.2;  // m
   double mu = 0.5, theta = 0.5, h = 1e-3, tol = 1e-8;
   double young = 1e6, poisson = 0.3;  // Pa, -
-  double pressure = 5e4, shear = 0.3;  // Pa on the top face; shear traction = shear * pressure
+  double pressure = 5e4, shear = 0.45;  // Pa on the top face; shear traction = shear * pressure
   double initial_gap = 1e-4;  // m
   bool consistent_mass = false;
   long max_iter = 200;
