@@ -1,0 +1,33 @@
+// --dump: one step's problem as an FCLIB file, with the example's own
+// solution stored as /solution, so that `fcsolve error FILE FILE` and
+// shared/tools/fcref.py can judge it. Needs the fcsolve::fclib target (HDF5).
+#pragma once
+
+#include <fcsolve/io/fclib.hpp>
+
+#include <string>
+
+namespace stepping {
+
+/// FC/I (M, H, f, w, mu) and /solution {r, u = H^T v + w, v}.
+inline void dump_global(const std::string& path, const fcsolve::GlobalProblem& p,
+                        const fcsolve::Vector& r, const fcsolve::Vector& v) {
+  fcsolve::fclib::write_global(path, p);
+  fcsolve::fclib::Solution s;
+  s.r = r;
+  s.v = v;
+  s.u = p.H.transpose() * v + p.w;
+  fcsolve::fclib::write_solution(path, s);
+}
+
+/// FC/II (W, q, mu) and /solution {r, u = W r + q}.
+inline void dump_local(const std::string& path, const fcsolve::LocalProblem& p,
+                       const fcsolve::Vector& r) {
+  fcsolve::fclib::write_local(path, p);
+  fcsolve::fclib::Solution s;
+  s.r = r;
+  s.u = p.W * r + p.q;
+  fcsolve::fclib::write_solution(path, s);
+}
+
+}  // namespace stepping
