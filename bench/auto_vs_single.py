@@ -2,7 +2,8 @@
 """`auto` against every single fcsolve solver on a set of FCLIB files.
 
 Each (problem, solver) is one `fcsolve solve FILE --solver S --json` process
-with --tol and --max-time; a run counts as solved when the FCLIB error of
+with --tol and --max-time (solves under 1 s repeated --repeat times, the
+fastest kept); a run counts as solved when the FCLIB error of
 the solution it wrote, recomputed by shared/tools/fcref.py (numpy/scipy,
 independent of fcsolve), is <= tol (problems with bilateral constraints,
 which fcref does not handle, fall back on fcsolve's own re-check). Results
@@ -128,6 +129,7 @@ def main():
     ap.add_argument("--tol", type=float, default=1e-8)
     ap.add_argument("--max-time", type=float, default=20)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--repeat", type=int, default=3, help="runs of solves under 1 s (fastest kept)")
     ap.add_argument("--summary", action="store_true")
     ap.add_argument("--redo", default="", help="solvers whose records are replaced (e.g. auto)")
     a = ap.parse_args()
@@ -141,12 +143,22 @@ def main():
         records = [r for r in records if r["solver"] not in redo]
         out.write_text("".join(json.dumps(r) + "\n" for r in records))
     done = {(r["problem"], r["solver"]) for r in records}
-    for solver in a.solvers.split(","):
-        for f in a.files:
+    # Problem by problem, every solver in turn: a busy spell of a shared
+    # machine hits auto and the single solvers alike.
+    for f in a.files:
+        for solver in a.solvers.split(","):
             name = Path(f).name
             if (name, solver) in done:
                 continue
             rec = run_one(a.cli, f, solver, a.tol, a.max_time)
+            # short solves: best of --repeat runs (noise of a shared machine)
+            for _ in range(a.repeat - 1):
+                if rec.get("seconds") is None or rec["seconds"] >= 1:
+                    break
+                again = run_one(a.cli, f, solver, a.tol, a.max_time)
+                if again.get("seconds") is not None and again["seconds"] < rec["seconds"] \
+                        and again["status"] == rec["status"]:
+                    rec = again
             rec.update(problem=name, solver=solver)
             with out.open("a") as fh:
                 fh.write(json.dumps(rec) + "\n")

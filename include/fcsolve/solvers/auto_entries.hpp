@@ -12,9 +12,12 @@
 //   1 sweeps   NSGS (`nsgs`): a warm start and a first measured convergence
 //              rate. Small problems (nc <= kTinyContacts) stay with NSGS to
 //              the end: a sweep costs next to nothing there and a Newton
-//              step's factorisation does not pay. Otherwise NSGS goes on only
-//              if its measured linear rate predicts tol within a few hundred
-//              sweeps.
+//              step's factorisation does not pay. Otherwise NSGS goes on, in
+//              chunks, only while its measured linear rate (re-measured on
+//              each chunk) predicts tol within a few hundred sweeps, and not
+//              at all on FC/I with d nc > n: W is then singular, the
+//              reactions are not unique and Gauss-Seidel plateaus (measured:
+//              spheres-in-a-box, d nc / n = 1.3, NSGS stuck at 6e-8).
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence),
@@ -121,19 +124,38 @@ class Plan {
     const SolveOutcome& warm = stage("nsgs", "nsgs", budget(0.1), std::min(kWarmSweeps, max_iter_left()),
                                      "warm start and first rate", /*history=*/true);
     if (done()) return finish();
-    // Linear rate of the sweeps, per sweep, from the last ten of them.
+    // Linear rate of the sweeps, per sweep, from the last ten warm sweeps
+    // (full errors every 10 sweeps; the first ten are a transient).
     const std::vector<double>& h = warm.info.history;
     double rate = 1;
-    if (h.size() >= 20 && h[9] > 0 && h[19] > 0) rate = std::pow(h[19] / h[9], 0.1);
+    if (h.size() >= 20 && h[9] > 0 && h[19] > 0 && h[19] < h[9]) rate = std::pow(h[19] / h[9], 0.1);
     else if (e_start > 0 && best_error_ < e_start) rate = std::pow(best_error_ / e_start, 1.0 / kWarmSweeps);
-    const double predicted =
-        rate < 1 ? std::log(tol() / best_error_) / std::log(rate) : std::numeric_limits<double>::infinity();
-    if (predicted <= kSweepsWorthContinuing) {
-      stage("nsgs", "nsgs", budget(0.5), std::min(int(2 * predicted) + 20, max_iter_left()),
-            "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps");
+    // Sweeps go on while their measured rate predicts tol within an
+    // allowance (about the cost of a few Newton steps), re-measured on
+    // every chunk: Gauss-Seidel usually slows down as it goes.
+    std::string why_newton;
+    if (f_.global && f_.contact_ratio > 1)
+      why_newton = "d*nc/n = " + number(f_.contact_ratio) +
+                   " > 1: W singular (reactions not unique), sweeps plateau";
+    double allowance = kSweepsWorthContinuing;
+    while (why_newton.empty()) {
+      const double predicted = rate < 1 ? std::log(tol() / best_error_) / std::log(rate)
+                                        : std::numeric_limits<double>::infinity();
+      const std::string prediction = "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps";
+      if (!(predicted <= allowance)) {
+        why_newton = prediction + ": sweeps too slow";
+        break;
+      }
+      const int chunk = int(std::min(allowance, 1.5 * predicted + 10));
+      const double before = best_error_;
+      stage("nsgs", "nsgs", budget(0.5), std::min(chunk, max_iter_left()), prediction);
       if (done()) return finish();
+      allowance -= last_.info.iterations;
+      rate = before > 0 && best_error_ < before
+                 ? std::pow(best_error_ / before, 1.0 / std::max(last_.info.iterations, 1))
+                 : 1;
     }
-    newton("rate " + number(rate) + ": sweeps too slow");
+    newton(why_newton);
     if (done()) return finish();
     return robust_tail("newton stopped: " + std::string(to_string(last_status_)));
   }
