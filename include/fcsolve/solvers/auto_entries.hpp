@@ -12,10 +12,11 @@
 //   1 sweeps   NSGS (`nsgs`): a warm start and a first measured convergence
 //              rate. Small problems (nc <= kTinyContacts) stay with NSGS to
 //              the end: a sweep costs next to nothing there and a Newton
-//              step's factorisation does not pay. Otherwise NSGS goes on
-//              only while its measured linear rate predicts tol within about
-//              a thousand sweeps (some ten Newton steps) and keeps that
-//              promise, and not at all on FC/I with d nc > n: W is then
+//              step's factorisation does not pay. Otherwise NSGS goes on, in
+//              doubling chunks, only while the linear rate measured on the
+//              last chunk predicts tol within what is left of an allowance
+//              of about a thousand sweeps (some ten Newton steps), and not
+//              at all on FC/I with d nc > n: W is then
 //              singular, the reactions are not unique and Gauss-Seidel
 //              plateaus (measured: spheres-in-a-box, d nc / n = 1.3, NSGS
 //              stuck at 6e-8).
@@ -67,6 +68,8 @@ inline constexpr int kWarmSweeps = 20;
 /// many sweeps: about ten Newton steps, one of which (a sparse LU of the
 /// Jacobian) cost 65 to 300 sweeps on the shared problems.
 inline constexpr double kSweepsWorthContinuing = 1000;
+/// Sweeps of the first continuation chunk (then 2x, 4x, ...).
+inline constexpr int kFirstChunk = 40;
 /// Newton: iterations without halving the best error that count as a stall.
 inline constexpr int kNewtonStallWindow = 25;
 /// The same for full Newton steps: they either contract fast or not at all.
@@ -133,26 +136,32 @@ class Plan {
     double rate = 1;
     if (h.size() >= 20 && h[9] > 0 && h[19] > 0 && h[19] < h[9]) rate = std::pow(h[19] / h[9], 0.1);
     else if (e_start > 0 && best_error_ < e_start) rate = std::pow(best_error_ / e_start, 1.0 / kWarmSweeps);
-    // Sweeps go on if their measured rate predicts tol within an allowance
-    // (about the cost of ten Newton steps).
     std::string why_newton;
     if (f_.global && f_.contact_ratio > 1)
       why_newton = "d*nc/n = " + number(f_.contact_ratio) +
                    " > 1: W singular (reactions not unique), sweeps plateau";
-    if (why_newton.empty()) {
+    // Sweeps go on, in doubling chunks, while the rate measured on the last
+    // chunk predicts tol within what is left of the allowance: Gauss-Seidel
+    // usually slows down as it goes, and a chunk that shows it hands over
+    // to Newton early.
+    double allowance = kSweepsWorthContinuing;
+    int chunk = kFirstChunk;
+    while (why_newton.empty()) {
       const double predicted = rate < 1 ? std::log(tol() / best_error_) / std::log(rate)
                                         : std::numeric_limits<double>::infinity();
       const std::string prediction = "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps";
-      if (predicted <= kSweepsWorthContinuing) {
-        // 1.5 x the prediction: falling short of it means the sweeps slowed
-        // down (Gauss-Seidel often does), and Newton takes over.
-        const int chunk = int(std::ceil(1.5 * predicted)) + 10;
-        stage("nsgs", "nsgs", budget(0.5), std::min(chunk, max_iter_left()), prediction);
-        if (done()) return finish();
-        why_newton = "the sweeps fell short of their predicted rate";
-      } else {
+      if (!(predicted <= allowance)) {
         why_newton = prediction + ": sweeps too slow";
+        break;
       }
+      const double before = best_error_;
+      stage("nsgs", "nsgs", budget(0.5), std::min(std::min(chunk, int(allowance)), max_iter_left()),
+            prediction);
+      if (done()) return finish();
+      const int sweeps = std::max(last_.info.iterations, 1);
+      allowance -= sweeps;
+      rate = before > 0 && best_error_ < before ? std::pow(best_error_ / before, 1.0 / sweeps) : 1;
+      chunk *= 2;
     }
     newton(why_newton);
     if (done()) return finish();
