@@ -1,6 +1,6 @@
 // fcsolve: command-line front end.
 //   fcsolve info FILE [--json]
-//   fcsolve solve FILE --solver NAME [--tol 1e-8] [--max-iter N] [--max-time S]
+//   fcsolve solve FILE [--solver NAME (auto)] [--tol 1e-8] [--max-iter N] [--max-time S]
 //                 [--out SOLUTION.hdf5] [--json] [--history] [--warm-start none|guess|solution]
 //                 [--SETTING VALUE ...]
 //   fcsolve error FILE SOLUTION.hdf5 [--json]
@@ -46,7 +46,7 @@ constexpr int kExitSolved = 0, kExitNotSolved = 1, kExitBadInput = 2, kExitInter
 const char* kUsage =
     "usage: fcsolve <command> [options]\n"
     "  info FILE [--json]                       problem summary (key=value or JSON)\n"
-    "  solve FILE --solver NAME [options]       solve an FCLIB problem\n"
+    "  solve FILE [--solver NAME] [options]     solve an FCLIB problem (default solver: auto)\n"
     "      --tol X (1e-8)  --max-iter N  --max-time SECONDS  --out FILE.hdf5  --json\n"
     "      --history  --warm-start none|guess|solution  --SETTING VALUE (see `fcsolve solvers`)\n"
     "  error FILE SOLUTION.hdf5 [--json]        FCLIB error of a stored /solution (r [, v])\n"
@@ -269,6 +269,15 @@ void print_outcome(const std::string& path, const std::string& kind,
     w.field("tol", o.request.common.tol).field("seconds", out.seconds);
     w.field("setup_seconds", out.info.setup_seconds).field("solve_seconds", out.info.solve_seconds);
     w.field("message", out.info.message);
+    if (!out.stages.empty()) {  // staged solvers (auto): what each stage did
+      w.key("stages").begin_array();
+      for (const auto& st : out.stages) {
+        w.begin_object().field("stage", st.name).field("solver", st.solver);
+        w.field("seconds", st.seconds).field("iterations", st.iterations).field("error", st.error);
+        w.field("status", st.status).field("why", st.why).end_object();
+      }
+      w.end_array();
+    }
     if (o.request.common.record_history) {
       w.key("history");
       w.values(out.info.history);
@@ -349,7 +358,7 @@ registry::SolveOutcome solve_file(const std::string& path, const fclib::Problem&
 }
 
 int cmd_solve(Args args) {
-  SolveOptions o = parse_solve_options(args, "");
+  SolveOptions o = parse_solve_options(args, "auto");
   if (args.positional.size() != 1) throw UsageError("solve takes exactly one FILE");
   const std::string path = args.positional[0];
   // --out rewrites its file from scratch: never the file we read (its

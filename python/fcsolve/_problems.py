@@ -116,7 +116,7 @@ class _Problem:
         NotImplementedError if this build lacks the interior-point family."""
         return _interior_point_tool("diagnostics")(self._data)
 
-    def solve(self, solver="nsgs", **options):
+    def solve(self, solver="auto", **options):
         """Shorthand for fcsolve.solve(self, solver, **options)."""
         from ._solve import solve
 

@@ -80,15 +80,19 @@ def solver(name):
     raise UsageError(f"unknown solver '{name}' (available: {names})")
 
 
-def solve(problem, solver="nsgs", tol=1e-8, max_iter=None, max_time=None, r0=None, v0=None,
+def solve(problem, solver="auto", tol=1e-8, max_iter=None, max_time=None, r0=None, v0=None,
           callback=None, history=False, **solver_settings):
     """Solves a LocalProblem or GlobalProblem with a solver of the catalogue.
 
     problem: fcsolve.LocalProblem or fcsolve.GlobalProblem.
     solver: a solver name (see fcsolve.solvers() and the list below) or an
-        fcsolve.Settings object (a solver name with checked settings).
+        fcsolve.Settings object (a solver name with checked settings). The
+        default, 'auto', runs a staged plan over the other solvers (NSGS
+        sweeps, semismooth Newton, fallbacks), each stage from the best
+        iterate so far; Result.stages says what it ran and why.
     tol: target FCLIB relative error (the error of LocalProblem.error).
-    max_iter: iteration budget (None: the solver's default_max_iter).
+    max_iter: iteration budget (None: the solver's default_max_iter; for
+        'auto', the iterations of all its stages together).
     max_time: wall-clock budget in seconds (None: unlimited).
     r0, v0: warm start for r (and v for global problems); a previous Result
         may be passed as r0 (its r and v are used).

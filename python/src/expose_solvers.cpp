@@ -435,6 +435,15 @@ void init_solvers(py::module_& m) {
                              "What the solver did beyond iterating (fallbacks, regularisation...).")
       .def_property_readonly("solver", [](const Result& r) { return r.outcome.solver; },
                              "Name of the solver that ran.")
+      .def_property_readonly("stages", [](const Result& r) {
+        py::list out;
+        for (const auto& st : r.outcome.stages)
+          out.append(py::dict("stage"_a = st.name, "solver"_a = st.solver, "seconds"_a = st.seconds,
+                              "iterations"_a = st.iterations, "error"_a = st.error,
+                              "status"_a = st.status, "why"_a = st.why));
+        return out;
+      }, "Stages a staged solver ('auto') ran, as dicts (stage, solver, seconds, iterations, "
+         "error, status, why); empty for the other solvers.")
       .def_property_readonly("tol", [](const Result& r) { return r.tol; }, "The tolerance asked for.")
       .def("__repr__", &result_repr);
 

@@ -4,6 +4,7 @@
 // programs that need run-time selection (CLI, Python, benchmarks) include it.
 #pragma once
 
+#include <fcsolve/solvers/auto_entries.hpp>
 #include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
 #include <fcsolve/solvers/ipm_entries.hpp>
@@ -21,6 +22,8 @@ inline const std::vector<SolverEntry>& entries() {
     add_vi_solvers(v);
     add_newton_solvers(v);
     add_ipm_solvers(v);
+    // `auto` runs the entries above by name (solvers/auto_entries.hpp).
+    add_auto_solvers(v);
     return v;
   }();
   return all;

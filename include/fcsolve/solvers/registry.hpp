@@ -35,11 +35,24 @@ struct SolveRequest {
   Vector v0;               ///< warm start for v (global-native solvers)
 };
 
+/// One stage of a staged solver (`auto`): which entry ran, for how long,
+/// what it reached and why the plan ran it.
+struct StageReport {
+  std::string name;    ///< the stage's role: "nsgs", "newton"
+  std::string solver;  ///< the catalogue entry that ran
+  double seconds = 0;
+  int iterations = 0;
+  double error = 0;    ///< FCLIB error of the stage's returned r
+  std::string status;  ///< to_string(Status) of the stage
+  std::string why;     ///< why the plan ran this stage
+};
+
 struct SolveOutcome {
   Vector r, u, v, lambda;  ///< v, lambda only for global problems
   SolverInfo info;         ///< status, iterations, error, timings, history
   double seconds = 0;      ///< wall time of the whole call (incl. reduction)
   std::string solver;
+  std::vector<StageReport> stages;  ///< staged solvers only (`auto`)
 };
 
 using LocalSolveFunction =

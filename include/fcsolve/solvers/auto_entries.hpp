@@ -1,0 +1,352 @@
+// The catalogue entry `auto`: one default call that aims to be robust AND
+// efficient (the open question at the end of the reference talk,
+// shared/docs/reference-talk.md: "choose efficiency OR robustness").
+//
+// It is a staged plan over the other catalogue entries. Every stage starts
+// from the best iterate so far and its result is judged with the FCLIB error
+// (registry::solve recomputes it), so the returned r is never worse than an
+// earlier stage's, and "converged" is claimed only when that error <= tol.
+//
+//   features   cheap, measured once: nc, d, m, mu range, kind (FC/I, FC/II),
+//              n and d nc / n (rank deficiency of W = H^T M^-1 H) for FC/I.
+//   1 sweeps   NSGS (`nsgs`): a warm start and a first measured convergence
+//              rate. Small problems (nc <= kTinyContacts) stay with NSGS to
+//              the end: a sweep costs next to nothing there and a Newton
+//              step's factorisation does not pay. Otherwise NSGS goes on, in
+//              doubling chunks, only while the linear rate measured on the
+//              last chunk predicts tol within what is left of an allowance
+//              of about a thousand sweeps (some ten Newton steps), and not
+//              at all on FC/I with d nc > n: W is then
+//              singular, the reactions are not unique and Gauss-Seidel
+//              plateaus (measured: spheres-in-a-box, d nc / n = 1.3, NSGS
+//              stuck at 6e-8).
+//   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
+//              solves every shared problem, docs/results.md): full steps
+//              from the sweeps' iterate (local superlinear convergence),
+//              then, if they stall, the line-searched Newton; each with a
+//              short stall window: it stops early when the error stops
+//              halving.
+//   3 sweeps   when Newton stalls or diverges: NSGS sweeps from the best
+//              iterate (robust, monotone in practice), then
+//   4 newton   Newton once more from what the sweeps reached (a Newton
+//              stage often converges from a better start where it stalled),
+//   5 sweeps   NSGS for whatever time is left.
+//
+// Stages switch on iteration counts and measured errors, never on measured
+// times, so a run is deterministic for a given input and settings; the wall
+// clock only cuts a stage when a finite max_time is given, and the budget is
+// split so that later stages keep a share of it.
+#pragma once
+
+#include <fcsolve/core/timer.hpp>
+#include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/solvers/registry.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace fcsolve {
+namespace registry {
+
+// Defined in solvers/catalog.hpp, which registers this entry among the
+// others; the plan looks its stages up by name when it runs.
+const SolverEntry& find(const std::string& name);
+
+namespace auto_detail {
+
+/// Problems with at most this many contacts are left to NSGS.
+inline constexpr Index kTinyContacts = 8;
+/// Sweeps NSGS gets on them before the robust tail (a few ms at that size).
+inline constexpr int kTinySweeps = 20000;
+/// Warm-start sweeps (two full errors with NSGS' error_every = 10).
+inline constexpr int kWarmSweeps = 20;
+/// NSGS continues after the warm start if its rate predicts tol within this
+/// many sweeps: about ten Newton steps, one of which (a sparse LU of the
+/// Jacobian) cost 65 to 300 sweeps on most shared problems (~2000 on the
+/// 356-sphere pile).
+inline constexpr double kSweepsWorthContinuing = 1000;
+/// Sweeps of the first continuation chunk (then 2x, 4x, ...).
+inline constexpr int kFirstChunk = 40;
+/// Newton: iterations without halving the best error that count as a stall.
+inline constexpr int kNewtonStallWindow = 25;
+/// The same for full Newton steps: they either contract fast or not at all.
+inline constexpr int kFullStepStallWindow = 12;
+inline constexpr int kNewtonMaxIter = 300;
+/// Sweeps between two Newton stages.
+inline constexpr int kBridgeSweeps = 500;
+
+/// Cheap features of the problem: the plan decides on nc, the kind and
+/// d nc / n; the mu range is reported with them.
+struct Features {
+  bool global = false;
+  Index nc = 0, m = 0;
+  int d = 3;
+  Index n = -1;             ///< degrees of freedom (FC/I only)
+  double mu_min = 0, mu_max = 0;
+  /// d nc / n: above 1, W = H^T M^-1 H is singular (more contact unknowns
+  /// than degrees of freedom: many contacts per body).
+  double contact_ratio = 0;
+};
+
+inline Features local_features(const LocalProblemView& p) {
+  Features f;
+  f.nc = p.num_contacts();
+  f.m = p.size();
+  f.d = p.d;
+  if (f.nc > 0) {
+    f.mu_min = p.mu.minCoeff();
+    f.mu_max = p.mu.maxCoeff();
+  }
+  return f;
+}
+
+inline std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return std::isfinite(x) ? std::string(buf) : std::string("null");
+}
+
+/// The staged run on FC/II: keeps the best iterate and the stage reports.
+class Plan {
+ public:
+  Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f)
+      : p_(p), req_(req), f_(f), best_(initial_reactions(req, p.size())) {
+    // The starting point's own error: a stage never returns worse than it.
+    const Vector u = p.W * best_ + p.q;
+    best_error_ = local_error_report(p, best_, u).error;
+  }
+
+  SolveOutcome run() {
+    if (best_error_ <= tol()) return finish("the starting point already meets tol");
+    if (f_.nc <= kTinyContacts) {
+      stage("nsgs", "nsgs", budget(0.5), std::min(kTinySweeps, max_iter_left()),
+            "nc <= " + std::to_string(kTinyContacts) + ": sweeps are cheapest");
+      if (done()) return finish();
+      return robust_tail("nsgs did not reach tol");
+    }
+    const double e_start = best_error_;
+    const SolveOutcome& warm = stage("nsgs", "nsgs", budget(0.1), std::min(kWarmSweeps, max_iter_left()),
+                                     "warm start and first rate", /*history=*/true);
+    if (done()) return finish();
+    // Linear rate of the sweeps, per sweep, from the last ten warm sweeps
+    // (full errors every 10 sweeps; the first ten are a transient).
+    const std::vector<double>& h = warm.info.history;
+    double rate = 1;
+    if (h.size() >= 20 && h[9] > 0 && h[19] > 0 && h[19] < h[9]) rate = std::pow(h[19] / h[9], 0.1);
+    else if (e_start > 0 && best_error_ < e_start) rate = std::pow(best_error_ / e_start, 1.0 / kWarmSweeps);
+    std::string why_newton;
+    if (f_.global && f_.contact_ratio > 1)
+      why_newton = "d*nc/n = " + number(f_.contact_ratio) +
+                   " > 1: W singular (reactions not unique), sweeps plateau";
+    // Sweeps go on, in doubling chunks, while the rate measured on the last
+    // chunk predicts tol within what is left of the allowance: Gauss-Seidel
+    // usually slows down as it goes, and a chunk that shows it hands over
+    // to Newton early.
+    double allowance = kSweepsWorthContinuing;
+    int chunk = kFirstChunk;
+    while (why_newton.empty()) {
+      const double predicted = rate < 1 ? std::log(tol() / best_error_) / std::log(rate)
+                                        : std::numeric_limits<double>::infinity();
+      const std::string prediction = "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps";
+      if (!(predicted <= allowance)) {
+        why_newton = prediction + ": sweeps too slow";
+        break;
+      }
+      const double before = best_error_;
+      stage("nsgs", "nsgs", budget(0.5), std::min(std::min(chunk, int(allowance)), max_iter_left()),
+            prediction);
+      if (done()) return finish();
+      const int sweeps = std::max(last_.info.iterations, 1);
+      allowance -= sweeps;
+      rate = before > 0 && best_error_ < before ? std::pow(best_error_ / before, 1.0 / sweeps) : 1;
+      chunk *= 2;
+    }
+    newton(why_newton);
+    if (done()) return finish();
+    return robust_tail("newton stopped: " + std::string(to_string(last_status_)));
+  }
+
+ private:
+  double tol() const { return req_.common.tol; }
+  bool done() const { return best_error_ <= tol() || out_of_time() || out_of_iterations() || stopped_; }
+  bool out_of_time() const { return clock_.seconds() >= req_.common.max_time; }
+  bool out_of_iterations() const { return iterations_ >= req_.common.max_iter; }
+  int max_iter_left() const { return std::max(req_.common.max_iter - iterations_, 0); }
+  /// A share of the time left (all of it when there is no time limit).
+  double budget(double share) const {
+    const double left = req_.common.max_time - clock_.seconds();
+    return std::isfinite(left) ? std::max(share * left, 0.0) : left;
+  }
+
+  /// Semismooth Newton from the best iterate: first with full steps (no
+  /// line search), which converge locally superlinearly (Qi & Sun 1993,
+  /// Math. Prog. 58) once the sweeps brought r near the solution; measured
+  /// on the shared set, the line search on 1/2 ||G||^2 started there often
+  /// crawls with tiny steps (Capsules: 25 steps without halving the error
+  /// where full steps need 5 to 11). A short stall window catches the
+  /// cases where full steps do not contract; the globalised Newton (the
+  /// entry's Goldstein-Price line search) then takes over from the best
+  /// iterate.
+  void newton(const std::string& why) {
+    stage("newton-full", "nsn-ac", budget(0.5), std::min(kNewtonMaxIter, max_iter_left()),
+          why + "; full steps", false, "none", kFullStepStallWindow);
+    if (done()) return;
+    stage("newton", "nsn-ac", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()),
+          std::string("full steps ") + to_string(last_status_) + ": line search",
+          false, "goldstein-price", kNewtonStallWindow);
+  }
+
+  /// After Newton stalled or NSGS did not finish: sweeps, Newton once more
+  /// from what they reached, then sweeps until the budget is spent.
+  SolveOutcome robust_tail(const std::string& why) {
+    const double before = best_error_;
+    stage("nsgs", "nsgs", budget(0.4), std::min(kBridgeSweeps, max_iter_left()), why);
+    if (done()) return finish();
+    newton(best_error_ < before ? "sweeps improved the iterate: Newton again"
+                                : "sweeps did not improve: Newton from the best iterate");
+    if (done()) return finish();
+    stage("nsgs", "nsgs", budget(1.0), max_iter_left(), "the rest of the budget to the robust sweeps");
+    return finish();
+  }
+
+  /// Runs one catalogue entry from the best iterate, keeps its result if
+  /// it is better, records the stage.
+  const SolveOutcome& stage(const std::string& label, const std::string& entry_name,
+                            double max_time, int max_iter, const std::string& why,
+                            bool history = false, const char* line_search = nullptr,
+                            int stall_window = 0) {
+    const SolverEntry& entry = find(entry_name);
+    SolveRequest req = make_request(entry);
+    req.common.tol = tol();
+    req.common.max_time = max_time;
+    req.common.max_iter = std::max(max_iter, 1);
+    req.common.record_history = history || req_.common.record_history;
+    if (req_.common.callback) {
+      // The caller sees one run: iterations and seconds continue across stages.
+      req.common.callback = [this](const IterationInfo& it) {
+        IterationInfo whole = it;
+        whole.iteration += iterations_;
+        whole.seconds = clock_.seconds();
+        return req_.common.callback(whole);
+      };
+    }
+    if (line_search) req.settings.set("line_search", std::string(line_search));
+    if (stall_window > 0) req.settings.set("stall_window", (long long)stall_window);
+    req.r0 = best_;
+    last_ = registry::solve(p_, entry, req);
+    last_status_ = last_.info.status;
+    iterations_ += last_.info.iterations;
+    setup_seconds_ += last_.info.setup_seconds;
+    if (req_.common.record_history) {
+      // A stage that records its starting point repeats the previous one's end.
+      const auto& h = last_.info.history;
+      const bool with_start = !history_.empty() && int(h.size()) > last_.info.iterations;
+      history_.insert(history_.end(), h.begin() + (with_start ? 1 : 0), h.end());
+    }
+    if (last_status_ == Status::Stopped) stopped_ = true;
+    if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
+      best_error_ = last_.info.error;
+      best_ = last_.r;
+    }
+    if (!reports_.empty()) reports_ += ", ";
+    reports_ += "{\"stage\": \"" + label + "\", \"solver\": \"" + entry_name +
+                "\", \"seconds\": " + number(last_.seconds) +
+                ", \"iterations\": " + std::to_string(last_.info.iterations) +
+                ", \"error\": " + number(last_.info.error) + ", \"status\": \"" +
+                to_string(last_status_) + "\", \"why\": \"" + why + "\"}";
+    StageReport s;
+    s.name = label;
+    s.solver = entry_name;
+    s.seconds = last_.seconds;
+    s.iterations = last_.info.iterations;
+    s.error = last_.info.error;
+    s.status = to_string(last_status_);
+    s.why = why;
+    stages_.push_back(std::move(s));
+    return last_;
+  }
+
+  SolveOutcome finish(const std::string& note = "") {
+    SolveOutcome out;
+    out.r = best_;
+    out.info.error = best_error_;
+    out.info.iterations = iterations_;
+    out.info.setup_seconds = setup_seconds_;
+    out.info.solve_seconds = clock_.seconds();
+    out.info.history = std::move(history_);
+    out.info.status = best_error_ <= tol()  ? Status::Converged
+                      : stopped_            ? Status::Stopped
+                      : out_of_time()       ? Status::TimeLimit
+                      : out_of_iterations() ? Status::MaxIterations
+                      : !std::isfinite(best_error_) ? Status::NumericalError
+                                                    : Status::Stalled;
+    std::string features = "nc=" + std::to_string(f_.nc) + " d=" + std::to_string(f_.d) +
+                           " mu=[" + number(f_.mu_min) + "," + number(f_.mu_max) + "]";
+    if (f_.global)
+      features += " n=" + std::to_string(f_.n) + " d*nc/n=" + number(f_.contact_ratio);
+    out.info.message = "auto (" + features + "): stages [" + reports_ + "]";
+    if (!note.empty()) out.info.message += "; " + note;
+    out.stages = std::move(stages_);
+    return out;
+  }
+
+  const LocalProblemView& p_;
+  const SolveRequest& req_;
+  Features f_;
+  Stopwatch clock_;
+  Vector best_;
+  double best_error_ = std::numeric_limits<double>::infinity();
+  SolveOutcome last_;
+  Status last_status_ = Status::NotRun;
+  int iterations_ = 0;
+  double setup_seconds_ = 0;
+  bool stopped_ = false;
+  std::vector<double> history_;
+  std::string reports_;
+  std::vector<StageReport> stages_;
+};
+
+inline SolveOutcome solve_local(const LocalProblemView& p, const SolveRequest& req) {
+  return Plan(p, req, local_features(p)).run();
+}
+
+/// FC/I: reduced once (W = H^T M^-1 H), the plan runs on FC/II, v (and the
+/// bilateral multipliers) recovered from r. The reduction's time counts
+/// against max_time.
+inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest& req) {
+  Stopwatch clock;
+  GlobalReduction<DefaultBackend> reduction(p);
+  const LocalProblemView local(reduction.local());
+  Features f = local_features(local);
+  f.global = true;
+  f.n = p.num_dofs();
+  f.contact_ratio = f.n > 0 ? double(f.m) / double(f.n) : 0;
+  SolveRequest inner = req;
+  inner.common.max_time = req.common.max_time - clock.seconds();
+  SolveOutcome out = Plan(local, inner, f).run();
+  out.v = reduction.velocity(out.r);
+  if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
+  out.info.setup_seconds += reduction.seconds();
+  return out;
+}
+
+}  // namespace auto_detail
+
+inline void add_auto_solvers(std::vector<SolverEntry>& v) {
+  SolverEntry e;
+  e.name = "auto";
+  e.family = "auto";
+  e.summary = "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/Newton fallback; "
+              "each stage from the best iterate";
+  e.default_max_iter = 1000000;
+  e.solve_local = auto_detail::solve_local;
+  e.solve_global = auto_detail::solve_global;
+  v.push_back(std::move(e));
+}
+
+}  // namespace registry
+}  // namespace fcsolve

@@ -1,0 +1,147 @@
+"""End-to-end checks of `auto`, the default solver of `fcsolve solve FILE`:
+it solves the bundled problems (and, when ../shared is beside the checkout,
+every shared one) to the tolerance by the independent reference
+shared/tools/fcref.py; it reports its stages in the JSON output and the
+message; it honours --max-time without claiming a false convergence; and it
+is deterministic for a given input and settings."""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+SHARED = Path(os.environ.get("FCSOLVE_SHARED_DATA", ROOT.parent / "shared" / "data" / "fclib"))
+TOOLS = SHARED.parent.parent / "tools"
+BUNDLED = ROOT / "examples" / "data"
+CLI = os.environ.get("FCSOLVE_CLI", str(ROOT / "build" / "fcsolve"))
+
+have_fcref = (TOOLS / "fcref.py").is_file()
+have_shared = (SHARED / "local").is_dir() and have_fcref
+needs_shared = pytest.mark.skipif(not have_shared, reason="../shared (FCLIB collection, fcref.py) absent")
+
+if have_fcref:
+    sys.path.insert(0, str(TOOLS))
+    import fcref  # noqa: E402  the independent reference, used only to check
+
+STAGE_KEYS = {"stage", "solver", "seconds", "iterations", "error", "status", "why"}
+
+
+def run(*args, timeout=120):
+    p = subprocess.run([CLI, *map(str, args)], capture_output=True, text=True, timeout=timeout)
+    assert p.returncode >= 0, f"fcsolve died from signal {-p.returncode}: {p.stderr}"
+    return p
+
+
+def solve_json(problem, *options, out=None):
+    args = ["solve", problem, "--json", *options]
+    if out is not None:
+        args += ["--out", out]
+    p = run(*args)
+    assert p.returncode in (0, 1), p.stderr
+    return p.returncode, json.loads(p.stdout)
+
+
+def solution(path):
+    with h5py.File(path) as f:
+        r = np.asarray(f["solution/r"])
+        v = np.asarray(f["solution/v"]) if "solution/v" in f else None
+    return r, v
+
+
+def independent_error(problem, sol_file):
+    """fcref's error when the reference is beside the checkout, else the
+    CLI's own `fcsolve error` (the same formula, recomputed from the file)."""
+    r, v = solution(sol_file)
+    if have_fcref:
+        return fcref.error(fcref.load(str(problem)), r, v)
+    p = run("error", problem, sol_file, "--json")
+    assert p.returncode == 0, p.stderr
+    return json.loads(p.stdout)["error"]
+
+
+def bundled_files():
+    return sorted(BUNDLED.glob("*.hdf5"))
+
+
+def check_stages(res):
+    assert res["solver"] == "auto"
+    assert isinstance(res["stages"], list) and res["stages"], res
+    for st in res["stages"]:
+        assert STAGE_KEYS <= set(st), st
+        assert st["why"], st
+    assert sum(st["iterations"] for st in res["stages"]) == res["iterations"]
+    assert "stages [" in res["message"]
+    # the result is the best iterate a stage reached (stages of a global
+    # problem measure on its reduction: equal up to round-off)
+    errors = [st["error"] for st in res["stages"] if st["error"] is not None]
+    assert res["error"] <= min(errors) * (1 + 1e-6) + 1e-12
+
+
+@pytest.mark.parametrize("problem", bundled_files(), ids=lambda p: p.name)
+def test_auto_is_the_default_and_solves_bundled_problems(problem, tmp_path):
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(problem, "--max-time", 20, out=sol)  # no --solver: auto
+    assert code == 0 and res["status"] == "converged", res
+    assert res["error"] <= 1e-8
+    check_stages(res)
+    assert independent_error(problem, sol) <= 1e-8
+    if res["kind"] == "global":
+        assert solution(sol)[1] is not None  # v recovered
+
+
+@needs_shared
+@pytest.mark.parametrize("problem", sorted(SHARED.glob("*/*.hdf5")) if have_shared else [],
+                         ids=lambda p: p.name)
+def test_auto_solves_every_shared_problem(problem, tmp_path):
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(problem, "--max-time", 20, out=sol)
+    assert code == 0 and res["status"] == "converged", res
+    assert fcref.error(fcref.load(str(problem)), *solution(sol)) <= 1e-8
+
+
+def test_max_time_is_honoured_without_a_false_convergence(tmp_path):
+    # 1e-30 is below round-off: every stage runs until the budget is spent.
+    problem = BUNDLED / "Capsules-i101-404.hdf5"
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(problem, "--tol", "1e-30", "--max-time", 0.5, out=sol)
+    assert code == 1 and res["status"] == "timeout" and not res["converged"], res
+    # a generous bound (a loaded machine): the budget cuts the run, not an iteration cap
+    assert res["seconds"] < 5, res
+    check_stages(res)
+    err = independent_error(problem, sol)
+    assert err == pytest.approx(res["error"], rel=1e-8)
+    assert err < 1e-6  # still the best iterate of its stages, not the start
+
+
+@pytest.mark.parametrize("name", ["Capsules-i101-404.hdf5", "Box_Stacks-i0035-31-0.hdf5"])
+def test_deterministic(name, tmp_path):
+    problem = BUNDLED / name
+    runs = []
+    for k in range(2):
+        sol = tmp_path / f"sol{k}.hdf5"
+        _, res = solve_json(problem, "--tol", "1e-10", "--max-time", 20, out=sol)
+        runs.append((res, solution(sol)))
+    (a, (ra, va)), (b, (rb, vb)) = runs
+    assert np.array_equal(ra, rb)
+    assert (va is None and vb is None) or np.array_equal(va, vb)
+    assert [(s["solver"], s["iterations"], s["why"]) for s in a["stages"]] == \
+           [(s["solver"], s["iterations"], s["why"]) for s in b["stages"]]
+    assert a["error"] == b["error"]
+
+
+def test_text_output_names_the_stages():
+    p = run("solve", BUNDLED / "OneObject-i1028-138.hdf5")
+    assert p.returncode == 0, p.stderr
+    assert "solver=auto" in p.stdout and "status=converged" in p.stdout
+    assert "stages [" in p.stdout
+
+
+def test_auto_listed_among_the_solvers():
+    p = run("solvers", "--json")
+    names = {e["name"]: e for e in json.loads(p.stdout)}
+    assert "auto" in names and names["auto"]["local"] and names["auto"]["global_native"]

@@ -1,0 +1,176 @@
+// fcsolve::solve (include/fcsolve/solve.hpp) and the `auto` plan behind it:
+// closed-form cases, local and global, where the exact r is known; a
+// strongly coupled case that NSGS alone would take thousands of sweeps on,
+// so that the plan must switch to Newton; determinism, warm starts, the
+// iteration budget, and a bundled FCLIB problem. Success is judged by the
+// distance to the closed form and by core/error.hpp's error, never by the
+// solver's own claim alone.
+#include <fcsolve/core/error.hpp>
+#include <fcsolve/io/fclib.hpp>
+#include <fcsolve/solve.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+using namespace fcsolve;
+
+namespace {
+
+SparseMatrix sparse(const DenseMatrix& A) {
+  SparseMatrix S = A.sparseView();
+  S.makeCompressed();
+  return S;
+}
+
+LocalProblem local_problem(const DenseMatrix& W, const Vector& q, double mu) {
+  LocalProblem p;
+  p.d = 3;
+  p.W = sparse(W);
+  p.q = q;
+  p.mu = Vector::Constant(q.size() / 3, mu);
+  return p;
+}
+
+/// `pairs` pairs of contacts whose normals are coupled by [[1, c], [c, 1]],
+/// tangents identity, mu = 0.5. With q_N = -(1 + c) both normals are
+/// r_N = 1 (u_N = 0); the first contact of a pair sticks (q_T = (0.1, 0):
+/// r_T = (-0.1, 0)), the second slides (q_T = (0, 2): r_T = (0, -0.5),
+/// u_T = (0, 1.5)). Gauss-Seidel on the normals contracts by c^2 per sweep.
+struct CoupledPairs {
+  LocalProblem problem;
+  Vector expected;
+  CoupledPairs(int pairs, double c) {
+    const Index m = 6 * pairs;
+    DenseMatrix W = DenseMatrix::Identity(m, m);
+    Vector q(m);
+    expected.resize(m);
+    for (int k = 0; k < pairs; ++k) {
+      const Index a = 6 * k, b = a + 3;
+      W(a, b) = W(b, a) = c;
+      q.segment<6>(a) << -(1 + c), 0.1, 0, -(1 + c), 0, 2;
+      expected.segment<6>(a) << 1, -0.1, 0, 1, 0, -0.5;
+    }
+    problem = local_problem(W, q, 0.5);
+  }
+};
+
+bool ran(const Solution& s, const std::string& stage) {
+  for (const auto& st : s.stages)
+    if (st.name.rfind(stage, 0) == 0) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("fcsolve::solve: one contact, closed forms, local and global", "[auto][closed-form]") {
+  // W = I, mu = 0.5: take-off r = 0; sticking r = (1, -0.1, 0); sliding
+  // r = (1, -0.5, 0) on the cone's boundary, opposite to u_T = (1.5, 0).
+  struct Case {
+    const char* name;
+    Eigen::Vector3d q, r;
+  };
+  const Case cases[] = {{"take-off", {1, 0.3, 0}, {0, 0, 0}},
+                        {"sticking", {-1, 0.1, 0}, {1, -0.1, 0}},
+                        {"sliding", {-1, 2, 0}, {1, -0.5, 0}}};
+  for (const Case& c : cases) {
+    SECTION(c.name) {
+      const LocalProblem p = local_problem(DenseMatrix::Identity(3, 3), c.q, 0.5);
+      const Solution s = fcsolve::solve(p);
+      CHECK(s.solver == "auto");
+      CHECK(s.info.converged());
+      CHECK((s.r - c.r).norm() <= 1e-10);
+      CHECK(local_error(p, s.r) <= 1e-8);
+      CHECK(s.info.error == Approx(local_error(p, s.r)).margin(1e-300));
+
+      // FC/I with M = I, H = I, w = 0: v = r + f = u, the same contact.
+      GlobalProblem g;
+      g.M = sparse(DenseMatrix::Identity(3, 3));
+      g.H = g.M;
+      g.f = c.q;
+      g.w = Vector::Zero(3);
+      g.mu = Vector::Constant(1, 0.5);
+      const Solution gs = fcsolve::solve(g);
+      CHECK(gs.info.converged());
+      CHECK((gs.r - c.r).norm() <= 1e-10);
+      CHECK((gs.v - (c.r + c.q)).norm() <= 1e-10);
+    }
+  }
+}
+
+TEST_CASE("auto: strongly coupled contacts, closed form, Newton takes over", "[auto][closed-form]") {
+  const CoupledPairs pairs(6, 0.999);  // 12 contacts: not left to NSGS alone
+  SolveSettings settings;
+  settings.tol = 1e-10;
+  const Solution s = fcsolve::solve(pairs.problem, settings);
+  INFO(s.info.message);
+  CHECK(s.info.converged());
+  CHECK(local_error(pairs.problem, s.r) <= 1e-10);
+  CHECK((s.r - pairs.expected).norm() <= 1e-6 * pairs.expected.norm());
+  CHECK(ran(s, "nsgs"));
+  CHECK(ran(s, "newton"));  // sweeps contract by 0.998 only
+  CHECK(s.info.message.find("stages [") != std::string::npos);
+  int iterations = 0;
+  for (const auto& st : s.stages) iterations += st.iterations;
+  CHECK(iterations == s.info.iterations);
+  // the result is the best iterate any stage reached
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& st : s.stages) best = std::min(best, st.error);
+  CHECK(s.info.error == Approx(best).epsilon(1e-6).margin(1e-300));
+
+  SECTION("deterministic") {
+    const Solution again = fcsolve::solve(pairs.problem, settings);
+    CHECK(again.r == s.r);
+    CHECK(again.stages.size() == s.stages.size());
+  }
+  SECTION("a warm start at the solution runs no stage") {
+    SolveSettings warm = settings;
+    warm.r0 = s.r;
+    const Solution w = fcsolve::solve(pairs.problem, warm);
+    CHECK(w.info.converged());
+    CHECK(w.stages.empty());
+    CHECK(w.r == s.r);
+  }
+  SECTION("a tiny iteration budget: no false convergence, never worse than the start") {
+    SolveSettings few = settings;
+    few.max_iter = 3;
+    const Solution f = fcsolve::solve(pairs.problem, few);
+    CHECK_FALSE(f.info.converged());
+    CHECK(f.info.iterations <= 3);
+    const double start = local_error(pairs.problem, Vector::Zero(pairs.problem.size()));
+    CHECK(local_error(pairs.problem, f.r) <= start);
+    CHECK(f.info.error == Approx(local_error(pairs.problem, f.r)).margin(1e-300));
+  }
+  SECTION("another solver by name") {
+    SolveSettings nsn = settings;
+    nsn.solver = "nsn-ac";
+    const Solution n = fcsolve::solve(pairs.problem, nsn);
+    CHECK(n.solver == "nsn-ac");
+    CHECK(n.stages.empty());
+    CHECK(local_error(pairs.problem, n.r) <= 1e-10);
+  }
+}
+
+TEST_CASE("auto: a bundled FCLIB problem of each kind", "[auto][fclib]") {
+  for (const char* name : {"OneObject-i1028-138.hdf5", "Capsules-i101-404.hdf5",
+                           "Box_Stacks-i0035-31-0.hdf5"}) {
+    const std::string path = std::string(FCSOLVE_BUNDLED_DATA) + "/" + name;
+    const fclib::Problem problem = fclib::read_problem(path);
+    INFO(name);
+    if (const auto* lp = std::get_if<LocalProblem>(&problem)) {
+      const Solution s = fcsolve::solve(*lp);
+      INFO(s.info.message);
+      CHECK(s.info.converged());
+      CHECK(local_error(*lp, s.r) <= 1e-8);
+    } else {
+      const auto& gp = std::get<GlobalProblem>(problem);
+      const Solution s = fcsolve::solve(gp);
+      INFO(s.info.message);
+      CHECK(s.info.converged());
+      GlobalReduction<DefaultBackend> reduction(gp, /*form_W=*/false);
+      CHECK(global_error_report(gp, reduction.free_velocity_norm(), s.r, s.v, s.lambda).error <= 1e-8);
+    }
+  }
+}
