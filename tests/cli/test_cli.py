@@ -235,3 +235,33 @@ def test_global_solve_recovers_v(tmp_path):
         r, v = np.asarray(f["solution/r"]), np.asarray(f["solution/v"])
     if have_shared:
         assert fcref.error(fcref.load(str(problem)), r, v) <= 1e-8
+
+
+def test_out_onto_the_input_is_refused_and_the_file_kept(tmp_path):
+    problem = tmp_path / "problem.hdf5"
+    problem.write_bytes((BUNDLED / "Rover1039.hdf5").read_bytes())
+    with h5py.File(problem, "r+") as f:  # a file with guesses, as FCLIB files have
+        g = f.create_group("guesses")
+        g["number_of_guesses"] = np.array([1], np.int32)
+        g.create_group("1")["r"] = np.zeros(12)
+    before = problem.read_bytes()
+    link = tmp_path / "link.hdf5"
+    link.symlink_to(problem)
+    for target in (problem, link):
+        out = run("solve", problem, "--solver", "nsgs", "--out", target)
+        assert out.returncode == 2, (out.stdout, out.stderr)
+        assert "input file" in out.stderr
+        assert problem.read_bytes() == before
+
+
+def test_json_output_keeps_a_utf8_title(tmp_path):
+    problem = tmp_path / "titled.hdf5"
+    problem.write_bytes((BUNDLED / "Rover1039.hdf5").read_bytes())
+    title = "μ = 0.7, Ø 2 cm ✓ 𝛍"  # 2-, 3- and 4-byte UTF-8 sequences
+    with h5py.File(problem, "r+") as f:
+        del f["fclib_local/info/title"]
+        f["fclib_local/info/title"] = np.bytes_(title.encode())
+    out = run("info", problem, "--json")
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.isascii()
+    assert json.loads(out.stdout)["title"] == title
