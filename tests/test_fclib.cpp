@@ -25,7 +25,7 @@ struct ManifestRow {
 
 std::map<std::string, ManifestRow> read_manifest() {
   std::map<std::string, ManifestRow> rows;
-  std::ifstream in(std::string(FCSOLVE_SHARED_DATA) + "/MANIFEST.csv");
+  std::ifstream in(fcsolve_test::shared_data_dir() + "/MANIFEST.csv");
   std::string line;
   std::getline(in, line);  // header: file,kind,source,nc,n,m,nnz,mu_min,mu_max,bytes
   while (std::getline(in, line)) {
@@ -93,7 +93,7 @@ TEST_CASE("every shared FCLIB file reads and matches the manifest", "[fclib]") {
   int seen = 0;
   for (const auto& [file, row] : manifest) {
     INFO(file);
-    const std::string path = std::string(FCSOLVE_SHARED_DATA) + "/" + file;
+    const std::string path = fcsolve_test::shared_data_dir() + "/" + file;
     const fclib::Problem p = fclib::read_problem(path);
     const ProblemSummary s = std::visit([](const auto& x) { return summarize(x); }, p);
     CHECK(s.kind == row.kind);

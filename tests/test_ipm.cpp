@@ -262,7 +262,7 @@ TEST_CASE("Where the published NIPM stalls, the recovery steps solve the problem
   if (fcsolve_test::have_shared_data()) {
     // Here the polish from the stalled iterate is not enough: re-centring is.
     const auto p = std::get<LocalProblem>(fclib::read_problem(
-        std::string(FCSOLVE_SHARED_DATA) + "/local/Capsules-i97-269.hdf5"));
+        fcsolve_test::shared_data_dir() + "/local/Capsules-i97-269.hdf5"));
     auto req = registry::make_request(registry::find("nipm"));
     const auto out = registry::solve(LocalProblemView(p), "nipm", req);
     CHECK(out.info.converged());

@@ -4,6 +4,7 @@
 #include <fcsolve/io/fclib.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -11,8 +12,16 @@
 
 namespace fcsolve_test {
 
+/// The shared FCLIB collection: $FCSOLVE_SHARED_DATA when set (CI hides the
+/// collection that way to run the tests as a lone clone has them), else
+/// ../shared/data/fclib beside the checkout (set by CMake).
+inline std::string shared_data_dir() {
+  const char* env = std::getenv("FCSOLVE_SHARED_DATA");
+  return env && *env ? std::string(env) : std::string(FCSOLVE_SHARED_DATA);
+}
+
 inline bool have_shared_data() {
-  return std::filesystem::is_directory(std::filesystem::path(FCSOLVE_SHARED_DATA) / "local");
+  return std::filesystem::is_directory(std::filesystem::path(shared_data_dir()) / "local");
 }
 
 /// Every .hdf5 file under `sub` ("local" or "global") of the shared
@@ -22,7 +31,7 @@ inline std::vector<std::string> fclib_files(const std::string& sub) {
   namespace fs = std::filesystem;
   std::vector<std::string> out;
   if (have_shared_data()) {
-    for (const auto& e : fs::directory_iterator(fs::path(FCSOLVE_SHARED_DATA) / sub))
+    for (const auto& e : fs::directory_iterator(fs::path(shared_data_dir()) / sub))
       if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
   } else {
     const auto kind = sub == "local" ? fcsolve::fclib::Kind::Local : fcsolve::fclib::Kind::Global;
