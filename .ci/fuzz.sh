@@ -34,10 +34,19 @@ done
 work=$(mktemp -d /tmp/fcsolve-fuzz.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 mkdir "$work/corpus" "$work/artifacts"
+# libFuzzer's fork mode exits with its last job's status (71 after an
+# out-of-memory input, 70 after a timeout, 77 after a crash) even when told
+# to go on; the verdict is the classification of the artifacts below.
+status=0
 "$fuzzer" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
   -max_total_time="$seconds" -max_len=200000 -rss_limit_mb=2048 -timeout=20 \
-  -artifact_prefix="$work/artifacts/" "$work/corpus" fuzz/seeds tests/hostile/files 2>&1 \
-  | grep -E '^#[0-9]+:|^INFO: fuzzed|DONE|stat::' | tail -4
+  -artifact_prefix="$work/artifacts/" "$work/corpus" fuzz/seeds tests/hostile/files \
+  >"$work/log" 2>&1 || status=$?
+grep -E '^#[0-9]+:|^INFO: fuzzed|^INFO: exiting|DONE|stat::' "$work/log" | tail -4 || true
+echo "fuzz: libFuzzer exited with status $status"
+if ! grep -qE '^INFO: fuzzed for|^INFO: exiting' "$work/log"; then
+  echo "fuzz: the fuzzer did not run to its time limit:" >&2; tail -20 "$work/log" >&2; exit 1
+fi
 failures=("$work"/artifacts/*)
 echo "fuzz: ${#failures[@]} failing inputs to classify"
 if (( ${#failures[@]} )); then
