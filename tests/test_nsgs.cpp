@@ -272,19 +272,10 @@ TEST_CASE("nsgs budgets, callback and history", "[nsgs]") {
 TEST_CASE("nsgs rejects bad input with typed exceptions", "[nsgs]") {
   const LocalProblem p = decoupled_problem();
   Nsgs3<BlockSparseStorage<3>> nsgs;
-  Vector r = Vector::Zero(p.size()), u(p.size());
-  CHECK_THROWS_AS(nsgs.solve(r, u), UsageError);  // before compute()
   Nsgs<Coulomb2D, BlockSparseStorage<2>, local::Projection<Coulomb2D>> wrong_cone;
   CHECK_THROWS_AS(wrong_cone.compute(p), InvalidProblem);
-  LocalProblem bad = p;
-  bad.mu[1] = -1;
-  CHECK_THROWS_AS(nsgs.compute(bad), InvalidProblem);
-  nsgs.compute(p);
-  Vector short_r = Vector::Zero(3);
-  CHECK_THROWS_AS(nsgs.solve(short_r, u), InvalidProblem);
-  r[0] = std::nan("");
-  CHECK_THROWS_AS(nsgs.solve(r, u), InvalidProblem);
-  r.setZero();
+  Vector r, u;
+  fcsolve_test::check_contract_errors(nsgs, p, r, u);
   nsgs.settings().omega = 2.5;
   CHECK_THROWS_AS(nsgs.solve(r, u), UsageError);
 }

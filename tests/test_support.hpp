@@ -3,7 +3,10 @@
 
 #include <fcsolve/io/fclib.hpp>
 
+#include <catch2/catch.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
@@ -50,6 +53,27 @@ inline std::string bundled(const std::string& name) {
 /// A per-test scratch file name (ctest -j runs tests in parallel).
 inline std::string scratch(const std::string& name) {
   return std::string(FCSOLVE_TEST_TMP) + "/scratch_" + name;
+}
+
+/// The solver contract's typed errors (docs/architecture.md) for a solver
+/// not computed yet: solve() before compute() is a UsageError; mu < 0 in
+/// p, a warm start of the wrong size or with a NaN are InvalidProblem.
+/// Leaves `solver` computed on p, r and u zero-filled of p's size.
+template <class Solver>
+void check_contract_errors(Solver& solver, const fcsolve::LocalProblem& p, fcsolve::Vector& r,
+                           fcsolve::Vector& u) {
+  r = fcsolve::Vector::Zero(p.size());
+  u = fcsolve::Vector::Zero(p.size());
+  CHECK_THROWS_AS(solver.solve(r, u), fcsolve::UsageError);  // before compute()
+  fcsolve::LocalProblem bad = p;
+  bad.mu[bad.mu.size() - 1] = -1;
+  CHECK_THROWS_AS(solver.compute(bad), fcsolve::InvalidProblem);
+  solver.compute(p);
+  fcsolve::Vector short_r = fcsolve::Vector::Zero(p.size() - 1);
+  CHECK_THROWS_AS(solver.solve(short_r, u), fcsolve::InvalidProblem);
+  r[0] = std::nan("");
+  CHECK_THROWS_AS(solver.solve(r, u), fcsolve::InvalidProblem);
+  r.setZero();
 }
 
 }  // namespace fcsolve_test

@@ -7,6 +7,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <limits>
+
 using namespace fcsolve;
 
 namespace {
@@ -116,4 +119,18 @@ TEST_CASE("VI solver statuses: max iterations, callback stop, warm start", "[vi]
   CHECK(warm.solve(rw, u).status == Status::Converged);
   CHECK(warm.info().iterations == 0);
   CHECK((u - (p.W * rw + p.q)).norm() < 1e-12);
+}
+
+TEST_CASE("VI solver rejects bad input with typed exceptions", "[vi]") {
+  const LocalProblem p = one_contact(0.5, Eigen::Vector3d(-1, 0.3, 0));
+  ProjectedFixedPoint<Coulomb2D, DenseStorage<2>> wrong_cone;
+  CHECK_THROWS_AS(wrong_cone.compute(p), InvalidProblem);
+  ProjectedFixedPoint<Coulomb3D, DenseStorage<3>> solver;
+  LocalProblem not_finite = p;
+  not_finite.q[1] = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(solver.compute(not_finite), InvalidProblem);
+  Vector r, u;
+  fcsolve_test::check_contract_errors(solver, p, r, u);
+  CHECK(solver.solve(r, u).status == Status::Converged);
+  CHECK(local_error(p, r) <= solver.settings().tol);
 }

@@ -257,7 +257,7 @@ py::list solver_list() {
     out.append(py::dict("name"_a = e.name, "family"_a = e.family, "summary"_a = e.summary,
                         "needs_symmetric"_a = e.needs_symmetric,
                         "default_max_iter"_a = e.default_max_iter,
-                        "local"_a = bool(e.solve_local), "global_native"_a = bool(e.solve_global),
+                        "local"_a = bool(e.solve_local), "global_native"_a = e.solves_global_natively(),
                         "settings"_a = settings));
   }
   return out;

@@ -40,6 +40,7 @@ class AclmSolver : public IpmSolverBase<Form> {
   using Settings = AclmSettings;
   explicit AclmSolver(const AclmSettings& settings = AclmSettings()) : settings_(settings) {}
   AclmSettings& settings() { return settings_; }
+  const AclmSettings& settings() const { return settings_; }
 
   template <class View>
   AclmSolver& compute(const View& p) {
@@ -167,15 +168,18 @@ class AclmSolver : public IpmSolverBase<Form> {
     info.status = converged ? Status::Converged
                             : (total >= st.max_iter || outer >= st.max_outer ? Status::MaxIterations
                                                                              : this->status_of(last_exit));
-    info.message = std::string(converged ? "converged; " : "") + "ACLM " +
-                   (st.variant == AclmVariant::Newton ? "Newton" : "fixed point") + ": " +
-                   std::to_string(outer) + " outer steps (" + std::to_string(newton_steps) +
-                   " Newton, " + std::to_string(fp_steps) + " fixed-point), " + std::to_string(total) +
-                   " interior-point iterations, error " + format_number(best_error);
-    if (!note.empty()) info.message += "; " + note;
+    summary_ = std::string("ACLM ") + (st.variant == AclmVariant::Newton ? "Newton" : "fixed point") +
+               ": " + std::to_string(outer) + " outer steps (" + std::to_string(newton_steps) +
+               " Newton, " + std::to_string(fp_steps) + " fixed-point), " + std::to_string(total) +
+               " interior-point iterations, error " + format_number(best_error);
+    if (!note.empty()) summary_ += "; " + note;
+    info.message = std::string(converged ? "converged; " : "") + summary_;
     info.solve_seconds = clock.seconds();
     return info;
   }
+
+  /// What the last solve() did (info().message without the status).
+  const std::string& summary() const { return summary_; }
 
  private:
   /// Warm start for the data s_new: the previous point pushed back into the
@@ -209,6 +213,7 @@ class AclmSolver : public IpmSolverBase<Form> {
     return products > 0 && ds.allFinite();
   }
 
+  std::string summary_;
   AclmSettings settings_;
   Vector s0_;
 };

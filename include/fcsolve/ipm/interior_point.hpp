@@ -29,24 +29,27 @@
 namespace fcsolve {
 namespace ipm {
 
-struct IpmOptions {
-  double tol = 1e-8;
-  int max_iter = 100;
-  double max_time = std::numeric_limits<double>::infinity();
-  bool coupled = false;          ///< NIPM: s unknown with s = ||x_T||
+/// The step knobs a user sets (IpmSettings, ipm_solver_base.hpp) and the
+/// engine reads (IpmOptions): declared, with their defaults, only here.
+struct IpmStepSettings {
   double step_fraction = 0.99;   ///< fraction to the boundary gamma
-  double sigma_max = 1.0;        ///< upper bound on the centring parameter
-  int refinement = 2;            ///< iterative-refinement steps per solve
+  double sigma_max = 1.0;        ///< upper bound on Mehrotra's centring parameter
+  int refinement = 2;            ///< iterative-refinement steps per linear solve
   double regularization = 0.0;   ///< static delta I, relative to the diagonal of K
+  double neighbourhood = 0.0;    ///< eta: every contact keeps lambda_min(lambda)^2 >= eta mu (0: off)
+};
+
+/// One run of the engine: the common settings (tol, max_iter, max_time,
+/// history, callback; core/solver_settings.hpp) and the step knobs, both
+/// copied from the solver's IpmSettings, plus what the solvers steer.
+struct IpmOptions : SolverSettings, IpmStepSettings {
+  bool coupled = false;          ///< NIPM: s unknown with s = ||x_T||
   int stall_window = 12;         ///< iterations without a better error -> NoProgress
   /// Below this error, stop (SlowProgress) once three iterations have not
   /// halved it: a Newton polish finishes faster than the IPM's last steps,
   /// which double precision slows down (0: never).
   double slow_below = 0.0;
   double fake_residual = 0.0;    ///< the talk's stopping tolerance to watch (0: tol)
-  double neighbourhood = 1e-3;   ///< eta: every contact keeps lambda_min(lambda)^2 >= eta mu
-  bool record_history = false;
-  IterationCallback callback;
   int iteration_offset = 0;      ///< added to iteration numbers in callbacks
   double seconds_offset = 0;     ///< added to the callbacks' seconds (time before this run)
 };

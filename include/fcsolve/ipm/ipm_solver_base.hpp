@@ -18,13 +18,10 @@
 namespace fcsolve {
 namespace ipm {
 
-struct IpmSettings : SolverSettings {
+/// Settings of the interior-point solvers; the step knobs and their
+/// defaults are IpmStepSettings' (ipm/interior_point.hpp).
+struct IpmSettings : SolverSettings, IpmStepSettings {
   IpmSettings() { max_iter = 100; }
-  double step_fraction = 0.99;  ///< fraction to the boundary
-  double sigma_max = 1.0;       ///< cap on Mehrotra's centring parameter
-  int refinement = 2;           ///< iterative-refinement steps per linear solve
-  double regularization = 0.0;  ///< static regularisation, relative to K's diagonal
-  double neighbourhood = 0.0;   ///< wide-neighbourhood parameter eta (0: off)
   bool polish = true;           ///< finish with Newton steps on the natural map
   int polish_iterations = 10;
   /// Switch to the polish once the error is below this and the IPM stops
@@ -97,18 +94,13 @@ class IpmSolverBase {
   IpmOptions engine_options(const IpmSettings& s, bool coupled, double tol, int max_iter,
                             double max_time) const {
     IpmOptions o;
+    static_cast<SolverSettings&>(o) = s;
+    static_cast<IpmStepSettings&>(o) = s;
     o.tol = tol;
     o.max_iter = max_iter;
     o.max_time = max_time;
     o.coupled = coupled;
-    o.step_fraction = s.step_fraction;
-    o.sigma_max = s.sigma_max;
-    o.refinement = s.refinement;
-    o.regularization = s.regularization;
-    o.neighbourhood = s.neighbourhood;
     o.slow_below = s.polish ? s.polish_below : 0.0;
-    o.record_history = s.record_history;
-    o.callback = s.callback;
     return o;
   }
 

@@ -40,6 +40,14 @@ struct NipmSettings : IpmSettings {
   bool recentre = true;  ///< include step 3 (re-centring) in the recovery
 };
 
+/// The recovery strategies (steps 2-4 above) and the order they are tried in.
+enum class Recovery { Resume, Recentre, Aclm };
+inline constexpr Recovery kRecoveryOrder[] = {Recovery::Resume, Recovery::Recentre, Recovery::Aclm};
+
+/// What a recovery strategy did: NotApplicable (its precondition failed,
+/// nothing ran), Ran, or Stopped (the callback asked to stop).
+enum class RecoveryResult { NotApplicable, Ran, Stopped };
+
 template <class Form>
 class NonsmoothIpm : public IpmSolverBase<Form> {
   using Base = IpmSolverBase<Form>;
@@ -49,6 +57,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
   using Settings = NipmSettings;
   explicit NonsmoothIpm(const NipmSettings& settings = NipmSettings()) : settings_(settings) {}
   NipmSettings& settings() { return settings_; }
+  const NipmSettings& settings() const { return settings_; }
 
   template <class View>
   NonsmoothIpm& compute(const View& p) {
@@ -96,50 +105,59 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
 
     // 1. NIPM until it slows down, then the polish.
     IpmOptions opt = this->engine_options(st, true, st.tol, st.max_iter, st.max_time);
-    IpmReport rep = run("NIPM", opt);
+    const IpmReport first = run("NIPM", opt);
     polish_best();
-    bool stopped = rep.exit == IpmExit::Stopped;
-    // 2. Resume while it still progresses.
-    if (!done() && !stopped && st.recover && rep.exit == IpmExit::SlowProgress) {
-      opt.slow_below = 0;
-      rep = run("NIPM resumed", opt);
-      polish_best();
-      stopped = rep.exit == IpmExit::Stopped;
-    }
-    // 3. Re-centre from the best iterate at a larger barrier parameter.
-    if (!done() && !stopped && st.recover && st.recentre && best_iterate_.x.size()) {
-      it = best_iterate_;
-      recentre(it, 1e4);
-      IpmOptions safe = opt;
-      safe.sigma_max = std::min(st.sigma_max, 0.3);
-      safe.step_fraction = std::min(st.step_fraction, 0.9);
-      safe.slow_below = st.polish ? st.polish_below : 0.0;
-      rep = run("re-centred NIPM", safe);
-      polish_best();
-      stopped = rep.exit == IpmExit::Stopped;
-    }
-    // 4. ACLM Newton from the best iterate's s = ||u_T||.
-    if (!done() && !stopped && st.recover) {
-      AclmSettings as;
-      static_cast<IpmSettings&>(as) = static_cast<const IpmSettings&>(st);
-      as.sigma_max = 1.0;
-      as.max_iter = remaining();
-      as.max_time = st.max_time - clock.seconds();
-      as.record_history = false;
-      as.callback = IterationCallback();
-      AclmSolver<Form> aclm(as);
-      aclm.compute(this->form_->view());
-      aclm.set_initial_s(tangential_speeds(best_r_, best_w_));
-      Vector rr, ww;
-      const SolverInfo ai = aclm.solve(rr, ww);
-      total += ai.iterations;
-      this->stats_.factorizations += aclm.statistics().factorizations;
-      this->stats_.factor_seconds += aclm.statistics().factor_seconds;
-      std::string what = ai.message;
-      const std::string prefix = "converged; ";
-      if (what.compare(0, prefix.size(), prefix) == 0) what.erase(0, prefix.size());
-      msg += "; fallback " + what;
-      consider(rr, ww, ai.error);
+    bool stopped = first.exit == IpmExit::Stopped;
+
+    // 2-4. The recovery strategies, in order, while tol is not met.
+    auto recover = [&](Recovery step) -> RecoveryResult {
+      switch (step) {
+        case Recovery::Resume: {  // the IPM resumed while it still progresses
+          if (first.exit != IpmExit::SlowProgress) return RecoveryResult::NotApplicable;
+          IpmOptions resumed = opt;
+          resumed.slow_below = 0;
+          const IpmReport rep = run("NIPM resumed", resumed);
+          polish_best();
+          return rep.exit == IpmExit::Stopped ? RecoveryResult::Stopped : RecoveryResult::Ran;
+        }
+        case Recovery::Recentre: {  // from the best iterate at a larger barrier parameter
+          if (!st.recentre || best_iterate_.x.size() == 0) return RecoveryResult::NotApplicable;
+          it = best_iterate_;
+          recentre(it, 1e4);
+          IpmOptions safe = opt;
+          safe.sigma_max = std::min(st.sigma_max, 0.3);
+          safe.step_fraction = std::min(st.step_fraction, 0.9);
+          safe.slow_below = st.polish ? st.polish_below : 0.0;
+          const IpmReport rep = run("re-centred NIPM", safe);
+          polish_best();
+          return rep.exit == IpmExit::Stopped ? RecoveryResult::Stopped : RecoveryResult::Ran;
+        }
+        case Recovery::Aclm: {  // ACLM Newton from the best iterate's s = ||u_T||
+          AclmSettings as;
+          static_cast<IpmSettings&>(as) = static_cast<const IpmSettings&>(st);
+          as.sigma_max = 1.0;
+          as.max_iter = remaining();
+          as.max_time = st.max_time - clock.seconds();
+          as.record_history = false;
+          as.callback = IterationCallback();
+          AclmSolver<Form> aclm(as);
+          aclm.compute(this->form_->view());
+          aclm.set_initial_s(tangential_speeds(best_r_, best_w_));
+          Vector rr, ww;
+          const SolverInfo ai = aclm.solve(rr, ww);
+          total += ai.iterations;
+          this->stats_.factorizations += aclm.statistics().factorizations;
+          this->stats_.factor_seconds += aclm.statistics().factor_seconds;
+          msg += "; fallback " + aclm.summary();
+          consider(rr, ww, ai.error);
+          return RecoveryResult::Ran;
+        }
+      }
+      return RecoveryResult::NotApplicable;
+    };
+    for (const Recovery step : kRecoveryOrder) {
+      if (done() || stopped || !st.recover) break;
+      stopped = recover(step) == RecoveryResult::Stopped;
     }
     r = best_r_;
     w = best_w_;

@@ -36,6 +36,7 @@ class SocqpIpm : public IpmSolverBase<Form> {
   explicit SocqpIpm(const IpmSettings& settings = IpmSettings()) : settings_(settings) {}
 
   IpmSettings& settings() { return settings_; }
+  const IpmSettings& settings() const { return settings_; }
 
   template <class View>
   SocqpIpm& compute(const View& p) {

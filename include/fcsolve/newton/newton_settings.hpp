@@ -3,6 +3,7 @@
 // singular Newton systems and the hybrid fallback.
 #pragma once
 
+#include <fcsolve/core/enum_names.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 
 namespace fcsolve {
@@ -14,6 +15,12 @@ enum class LineSearch {
   Armijo,          ///< backtracking: psi(r + t d) <= (1 - 2 sigma t) psi(r)
   GoldsteinPrice,  ///< Armijo plus the lower Goldstein bound (1 - 2 (1 - sigma) t) psi <= psi(r + t d) (t < 1)
 };
+inline constexpr EnumName<LineSearch> kLineSearchNames[] = {
+    {LineSearch::GoldsteinPrice, "goldstein-price"},
+    {LineSearch::Armijo, "armijo"},
+    {LineSearch::None, "none"}};
+constexpr const auto& enum_names(LineSearch) { return kLineSearchNames; }
+inline const char* to_string(LineSearch l) { return enum_to_string(l); }
 
 /// How the per-contact rho = (rho_N, rho_T, rho_T) of the formulation is set.
 enum class RhoStrategy {
@@ -22,6 +29,13 @@ enum class RhoStrategy {
   SplitSpectralNorm,  ///< rho_N = settings.rho / W^aa_NN, rho_T = settings.rho / ||W^aa_TT||_2
   Adaptive,           ///< split spectral, times 10 then times 1/10 when Newton stalls (restart from the best iterate)
 };
+inline constexpr EnumName<RhoStrategy> kRhoStrategyNames[] = {
+    {RhoStrategy::SplitSpectralNorm, "split-spectral"},
+    {RhoStrategy::SpectralNorm, "spectral"},
+    {RhoStrategy::Constant, "constant"},
+    {RhoStrategy::Adaptive, "adaptive"}};
+constexpr const auto& enum_names(RhoStrategy) { return kRhoStrategyNames; }
+inline const char* to_string(RhoStrategy r) { return enum_to_string(r); }
 
 struct NewtonSettings : SolverSettings {
   LineSearch line_search = LineSearch::GoldsteinPrice;

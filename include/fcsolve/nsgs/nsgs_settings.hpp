@@ -1,6 +1,7 @@
 // Settings of the nonsmooth Gauss-Seidel solver (nsgs/nsgs_solver.hpp).
 #pragma once
 
+#include <fcsolve/core/enum_names.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 
 #include <cstdint>
@@ -14,14 +15,12 @@ enum class ContactOrdering {
   ShuffledEachSweep ///< a new random permutation every sweep
 };
 
-inline const char* to_string(ContactOrdering o) {
-  switch (o) {
-    case ContactOrdering::Natural: return "natural";
-    case ContactOrdering::ShuffledOnce: return "shuffle";
-    case ContactOrdering::ShuffledEachSweep: return "reshuffle";
-  }
-  return "?";
-}
+inline constexpr EnumName<ContactOrdering> kContactOrderingNames[] = {
+    {ContactOrdering::Natural, "natural"},
+    {ContactOrdering::ShuffledOnce, "shuffle"},
+    {ContactOrdering::ShuffledEachSweep, "reshuffle"}};
+constexpr const auto& enum_names(ContactOrdering) { return kContactOrderingNames; }
+inline const char* to_string(ContactOrdering o) { return enum_to_string(o); }
 
 /// NSGS knobs; `LocalSettings` are the local solver's (e.g.
 /// local::Projection<Cone>::Settings). Common ones (tol, max_iter, max_time,

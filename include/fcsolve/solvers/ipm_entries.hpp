@@ -6,7 +6,13 @@
 #include <fcsolve/core/error.hpp>
 #include <fcsolve/nipm.hpp>
 #include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/solvers/dispatch.hpp>
 #include <fcsolve/solvers/registry.hpp>
+
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace fcsolve {
 namespace registry {
@@ -18,24 +24,38 @@ inline constexpr Index kDenseKktMaxSize = 96;
 
 enum class IpmKind { Socqp, AclmFixedPoint, AclmNewton, Nipm };
 
+/// The settings struct of a kind: where its defaults come from.
+inline ipm::IpmSettings default_settings(IpmKind kind) {
+  switch (kind) {
+    case IpmKind::Socqp: return ipm::IpmSettings();
+    case IpmKind::Nipm: return ipm::NipmSettings();
+    default: return ipm::AclmSettings();
+  }
+}
+
 inline std::vector<SettingSpec> ipm_settings(IpmKind kind) {
+  const ipm::IpmSettings d = default_settings(kind);
   std::vector<SettingSpec> v = {
-      real_setting("step_fraction", 0.99, "fraction to the cone boundary", 0.5, 0.999999),
-      real_setting("sigma_max", kind == IpmKind::Nipm ? 0.5 : 1.0,
-                   "upper bound on Mehrotra's centring parameter", 1e-3, 1.0),
-      integer_setting("refinement", 2, "iterative-refinement steps per linear solve", 0, 20),
-      real_setting("regularization", 0.0, "static regularisation of the Newton matrix (relative)", 0.0, 1e-2),
-      real_setting("neighbourhood", 0.0, "wide-neighbourhood parameter of the step (0: off)", 0.0, 0.5),
-      boolean_setting("polish", true, "finish with Newton steps on the natural map"),
-      integer_setting("polish_iterations", 10, "Newton steps of the polish", 0, 100),
-      real_setting("polish_below", 1e-5, "polish once the error is below this and slows down", 0.0, 1.0)};
+      real_setting("step_fraction", d.step_fraction, "fraction to the cone boundary", 0.5, 0.999999),
+      real_setting("sigma_max", d.sigma_max, "upper bound on Mehrotra's centring parameter", 1e-3, 1.0),
+      integer_setting("refinement", d.refinement, "iterative-refinement steps per linear solve", 0, 20),
+      real_setting("regularization", d.regularization,
+                   "static regularisation of the Newton matrix (relative)", 0.0, 1e-2),
+      real_setting("neighbourhood", d.neighbourhood,
+                   "wide-neighbourhood parameter of the step (0: off)", 0.0, 0.5),
+      boolean_setting("polish", d.polish, "finish with Newton steps on the natural map"),
+      integer_setting("polish_iterations", d.polish_iterations, "Newton steps of the polish", 0, 100),
+      real_setting("polish_below", d.polish_below,
+                   "polish once the error is below this and slows down", 0.0, 1.0)};
   if (kind == IpmKind::AclmFixedPoint || kind == IpmKind::AclmNewton) {
-    v.push_back(integer_setting("max_outer", 60, "outer (s-update) iterations", 1, 100000));
-    v.push_back(real_setting("inner_ratio", 0.1, "inner tolerance / outer error", 1e-6, 1.0));
+    const ipm::AclmSettings a;
+    v.push_back(integer_setting("max_outer", a.max_outer, "outer (s-update) iterations", 1, 100000));
+    v.push_back(real_setting("inner_ratio", a.inner_ratio, "inner tolerance / outer error", 1e-6, 1.0));
   }
   if (kind == IpmKind::Nipm) {
-    v.push_back(boolean_setting("recover", true, "resume / re-centre / ACLM when the NIPM stalls"));
-    v.push_back(boolean_setting("recentre", true, "re-centring as a recovery step"));
+    const ipm::NipmSettings n;
+    v.push_back(boolean_setting("recover", n.recover, "resume / re-centre / ACLM when the NIPM stalls"));
+    v.push_back(boolean_setting("recentre", n.recentre, "re-centring as a recovery step"));
   }
   return v;
 }
@@ -158,22 +178,35 @@ void judge_associated_solution(const View& p, const SolveRequest& req, SolveOutc
                       ipm::format_number(error) + " > tol";
 }
 
+template <class T>
+struct TypeTag {
+  using type = T;
+};
+
+/// The catalogue's dispatch (solvers/dispatch.hpp) for the interior-point
+/// forms: f(TypeTag<Form<N, Factorization>>{}), N the friction cone's
+/// dimension (d = 2 or 3, require_friction()), a dense KKT factorisation
+/// for small systems.
+template <template <int, class> class Form, class F>
+void dispatch_ipm_form(int d, bool dense, F&& f) {
+  dispatch_cone_and_density(d, dense, [&](auto cone, auto is_dense) {
+    constexpr int N = decltype(cone)::dim;
+    if constexpr (N > 1) {
+      using Factorization = std::conditional_t<decltype(is_dense)::value, ipm::DenseKktFactorization,
+                                               ipm::SparseKktFactorization<DefaultBackend>>;
+      f(TypeTag<Form<N, Factorization>>{});
+    }
+  });
+}
+
 inline LocalSolveFunction ipm_local(IpmKind kind) {
   return [kind](const LocalProblemView& p, const SolveRequest& req) {
     require_friction(p.d);
     SolveOutcome out;
     if (accept_warm_start(p, req, out)) return out;
-    const bool dense = p.size() <= kDenseKktMaxSize;
-    auto go = [&](auto dim) {
-      constexpr int N = decltype(dim)::value;
-      if (dense)
-        out.info = run_ipm<ipm::LocalForm<N, ipm::DenseKktFactorization>>(kind, p, req, out.r, out.u);
-      else
-        out.info = run_ipm<ipm::LocalForm<N, ipm::SparseKktFactorization<DefaultBackend>>>(
-            kind, p, req, out.r, out.u);
-    };
-    if (p.d == 3) go(std::integral_constant<int, 3>());
-    else go(std::integral_constant<int, 2>());
+    dispatch_ipm_form<ipm::LocalForm>(p.d, p.size() <= kDenseKktMaxSize, [&](auto form) {
+      out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out.r, out.u);
+    });
     if (kind == IpmKind::Socqp) judge_associated_solution(p, req, out);
     return out;
   };
@@ -184,47 +217,46 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
     require_friction(p.d);
     SolveOutcome out;
     if (accept_warm_start(p, req, out)) return out;
-    if (p.has_bilateral()) {  // the global form has no (G, b): reduce
-      GlobalReduction<DefaultBackend> reduction(p);
-      out = ipm_local(kind)(LocalProblemView(reduction.local()), req);
-      out.v = reduction.velocity(out.r);
-      out.lambda = reduction.multipliers(out.r);
-      out.info.message = "solved on the reduced problem (bilateral constraints); " + out.info.message;
-      return out;
-    }
+    if (p.has_bilateral())  // the global form has no (G, b)
+      return solve_bilateral_by_reduction(p, [&](const LocalProblemView& reduced) {
+        return ipm_local(kind)(reduced, req);
+      });
     const bool dense = p.num_dofs() + p.size() <= kDenseKktMaxSize;
-    auto go = [&](auto dim) {
-      constexpr int N = decltype(dim)::value;
-      if (dense)
-        out.info = run_ipm<ipm::GlobalForm<N, ipm::DenseKktFactorization>>(kind, p, req, out.r, out.v);
-      else
-        out.info = run_ipm<ipm::GlobalForm<N, ipm::SparseKktFactorization<DefaultBackend>>>(
-            kind, p, req, out.r, out.v);
-    };
-    if (p.d == 3) go(std::integral_constant<int, 3>());
-    else go(std::integral_constant<int, 2>());
+    dispatch_ipm_form<ipm::GlobalForm>(p.d, dense, [&](auto form) {
+      out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out.r, out.v);
+    });
     if (kind == IpmKind::Socqp) judge_associated_solution(p, req, out);
     return out;
   };
+}
+
+inline SolverEntry ipm_entry(std::string name, std::string summary, IpmKind kind) {
+  SolverEntry e;
+  e.name = std::move(name);
+  e.family = "ipm";
+  e.summary = std::move(summary);
+  e.settings = ipm_settings(kind);
+  e.default_max_iter = default_settings(kind).max_iter;
+  e.solve_local = ipm_local(kind);
+  e.solve_global = ipm_global(kind);
+  return e;
 }
 
 }  // namespace detail
 
 inline void add_ipm_solvers(std::vector<SolverEntry>& v) {
   using detail::IpmKind;
-  v.push_back({"ipm-socqp", "ipm",
-               "convex SOCQP IPM with s = 0 (associated friction law; NT scaling, Mehrotra)",
-               detail::ipm_settings(IpmKind::Socqp), false, 100, detail::ipm_local(IpmKind::Socqp),
-               detail::ipm_global(IpmKind::Socqp)});
-  v.push_back({"aclm-fp", "ipm", "ACLM fixed point s <- ||u_T(s)|| over the convex IPM",
-               detail::ipm_settings(IpmKind::AclmFixedPoint), false, 400,
-               detail::ipm_local(IpmKind::AclmFixedPoint), detail::ipm_global(IpmKind::AclmFixedPoint)});
-  v.push_back({"aclm-newton", "ipm", "ACLM Newton on F(s) = s over the convex IPM (GMRES, implicit F')",
-               detail::ipm_settings(IpmKind::AclmNewton), false, 400,
-               detail::ipm_local(IpmKind::AclmNewton), detail::ipm_global(IpmKind::AclmNewton)});
-  v.push_back({"nipm", "ipm", "nonsmooth IPM on FC/I with recovery (polish, re-centring, ACLM)",
-               detail::ipm_settings(IpmKind::Nipm), false, 200, detail::ipm_local(IpmKind::Nipm),
-               detail::ipm_global(IpmKind::Nipm)});
+  using detail::ipm_entry;
+  v.push_back(ipm_entry("ipm-socqp",
+                        "convex SOCQP IPM with s = 0 (associated friction law; NT scaling, Mehrotra)",
+                        IpmKind::Socqp));
+  v.push_back(ipm_entry("aclm-fp", "ACLM fixed point s <- ||u_T(s)|| over the convex IPM",
+                        IpmKind::AclmFixedPoint));
+  v.push_back(ipm_entry("aclm-newton",
+                        "ACLM Newton on F(s) = s over the convex IPM (GMRES, implicit F')",
+                        IpmKind::AclmNewton));
+  v.push_back(ipm_entry("nipm", "nonsmooth IPM on FC/I with recovery (polish, re-centring, ACLM)",
+                        IpmKind::Nipm));
 }
 
 }  // namespace registry

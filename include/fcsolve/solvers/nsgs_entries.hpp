@@ -2,13 +2,15 @@
 // entry per local solver, all with the NSGS knobs (omega, ordering, seed,
 // error_every, freezing) plus the local solver's own.
 //
-// The storage is chosen at run time: DenseStorage up to
-// kDenseStorageMaxContacts contacts, BlockSparseStorage beyond; the cone by
-// dispatch_cone(d). That is 2 x 2 instantiations of Nsgs per local solver
+// The storage is chosen at run time (solvers/dispatch.hpp): DenseStorage up
+// to kDenseStorageMaxContacts contacts, BlockSparseStorage beyond; the cone
+// by the contact dimension. That is 2 x 2 instantiations of Nsgs per local solver
 // (3D, 2D), plus two shared by every entry for frictionless problems.
 #pragma once
 
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/nsgs.hpp>
+#include <fcsolve/solvers/dispatch.hpp>
 #include <fcsolve/solvers/registry.hpp>
 
 #include <string>
@@ -19,19 +21,24 @@ namespace fcsolve {
 namespace registry {
 namespace nsgs_detail {
 
+/// The NSGS knobs' defaults (the local solver's settings do not matter here).
+struct NoLocalSettings {};
+inline const NsgsSettings<NoLocalSettings> kDefaults{};
+
 inline std::vector<SettingSpec> common_settings(double omega) {
+  const auto& d = kDefaults;
   return {
       real_setting("omega", omega, "over-relaxation r <- omega r_local + (1 - omega) r, in (0, 2)",
                    1e-6, 2 - 1e-6),
-      choice_setting("ordering", "natural", {"natural", "shuffle", "reshuffle"},
-                     "contact order: natural, shuffled once, reshuffled every sweep"),
+      enum_setting("ordering", d.ordering,
+                   "contact order: natural, shuffled once, reshuffled every sweep"),
       boolean_setting("shuffle", false, "same as --ordering shuffle"),
-      integer_setting("seed", 0, "seed of the contact shuffles", 0, 4294967295.0),
-      integer_setting("stall_sweeps", 5000,
+      integer_setting("seed", d.seed, "seed of the contact shuffles", 0, 4294967295.0),
+      integer_setting("stall_sweeps", d.stall_sweeps,
                       "reshuffle every sweep after this many sweeps without 1% progress (0: never)",
                       0, 1e9),
-      integer_setting("error_every", 10, "full error at least every k sweeps", 1, 1e9),
-      integer_setting("freezing", 10,
+      integer_setting("error_every", d.error_every, "full error at least every k sweeps", 1, 1e9),
+      integer_setting("freezing", d.freezing,
                       "skip a contact for k sweeps once its local solution stops moving (0: off)",
                       0, 1e9),
   };
@@ -42,10 +49,9 @@ void apply_common(const SolveRequest& req, Settings& s) {
   static_cast<SolverSettings&>(s) = req.common;
   const SettingValues& v = req.settings;
   s.omega = v.real("omega");
-  const std::string& o = v.choice("ordering");
-  s.ordering = o == "reshuffle" ? ContactOrdering::ShuffledEachSweep
-               : o == "shuffle" || v.boolean("shuffle") ? ContactOrdering::ShuffledOnce
-                                                        : ContactOrdering::Natural;
+  s.ordering = v.enumerated<ContactOrdering>("ordering");
+  if (s.ordering == ContactOrdering::Natural && v.boolean("shuffle"))
+    s.ordering = ContactOrdering::ShuffledOnce;
   s.seed = static_cast<std::uint32_t>(v.integer("seed"));
   s.stall_sweeps = static_cast<int>(v.integer("stall_sweeps"));
   s.error_every = static_cast<int>(v.integer("error_every"));
@@ -54,6 +60,7 @@ void apply_common(const SolveRequest& req, Settings& s) {
 
 template <class Solver, class Configure>
 SolveOutcome run(const LocalProblemView& view, const SolveRequest& req, const Configure& configure) {
+  static_assert(satisfies_solver_contract_v<Solver, LocalProblemView>);
   Solver solver;
   apply_common(req, solver.settings());
   configure(req.settings, solver.settings().local);
@@ -66,7 +73,8 @@ SolveOutcome run(const LocalProblemView& view, const SolveRequest& req, const Co
   return out;
 }
 
-/// NSGS with local solver Local<Cone>, the cone and the storage picked here.
+/// NSGS with local solver Local<Cone>, the cone and the storage picked by
+/// the catalogue's dispatch (solvers/dispatch.hpp).
 /// `configure(values, local_settings)` copies the local solver's knobs.
 /// Frictionless problems use the projection whatever the entry: with rho =
 /// 1 / W^aa it is the exact one-contact solution max(0, -q / W^aa), which
@@ -74,25 +82,21 @@ SolveOutcome run(const LocalProblemView& view, const SolveRequest& req, const Co
 template <template <class> class Local, class Configure>
 SolveOutcome solve_with(const LocalProblemView& view, const SolveRequest& req,
                         const Configure& configure) {
-  return dispatch_cone(view.d, [&](auto cone) {
-    using Cone = decltype(cone);
-    constexpr int D = Cone::dim;
-    if constexpr (D == 1) {
+  return dispatch_cone_and_storage<BlockSparseStorage>(view, [&](auto types) {
+    using Cone = typename decltype(types)::Cone;
+    using Storage = typename decltype(types)::Storage;
+    if constexpr (Cone::dim == 1) {
       const auto defaults = [](const SettingValues&, auto&) {};
-      if (view.num_contacts() <= kDenseStorageMaxContacts)
-        return run<Nsgs<Cone, DenseStorage<1>, local::Projection<Cone>>>(view, req, defaults);
-      return run<Nsgs<Cone, BlockSparseStorage<1>, local::Projection<Cone>>>(view, req, defaults);
+      return run<Nsgs<Cone, Storage, local::Projection<Cone>>>(view, req, defaults);
     } else {
-      if (view.num_contacts() <= kDenseStorageMaxContacts)
-        return run<Nsgs<Cone, DenseStorage<D>, Local<Cone>>>(view, req, configure);
-      return run<Nsgs<Cone, BlockSparseStorage<D>, Local<Cone>>>(view, req, configure);
+      return run<Nsgs<Cone, Storage, Local<Cone>>>(view, req, configure);
     }
   });
 }
 
 template <template <class> class Local, class Configure>
 SolverEntry make_entry(std::string name, std::string summary, std::vector<SettingSpec> local,
-                       Configure configure, double omega = 1.0) {
+                       Configure configure, double omega = kDefaults.omega) {
   SolverEntry e;
   e.name = std::move(name);
   e.family = "nsgs";
@@ -122,26 +126,45 @@ inline const auto configure_enumerative = [](const SettingValues& v, auto& s) {
 inline const auto configure_newton = [](const SettingValues& v, auto& s) {
   s.tol = v.real("local_tol");
   s.max_iter = static_cast<int>(v.integer("local_max_iter"));
-  const std::string& ls = v.choice("line_search");
-  s.search.line_search = ls == "armijo" ? LineSearch::Armijo
-                         : ls == "none" ? LineSearch::None
-                                        : LineSearch::GoldsteinPrice;
+  s.search.line_search = v.enumerated<LineSearch>("line_search");
 };
 inline const auto configure_hybrid = [](const SettingValues& v, auto& s) {
   configure_newton(v, s.newton);
   s.projection.max_iter = static_cast<int>(v.integer("projection_max_iter"));
 };
 
+// The local solvers' defaults are those of their Settings structs; the
+// cone does not change them.
+using NewtonDefaults = local::AlartCurnierNewton<Coulomb3D>::Settings;
+using ProjectionDefaults = local::Projection<Coulomb3D>::Settings;
+using ProjectionIterativeDefaults = local::ProjectionIterative<Coulomb3D>::Settings;
+
 inline std::vector<SettingSpec> newton_settings() {
-  return {real_setting("local_tol", 1e-14, "local Newton tolerance on ||G||", 0, 1),
-          integer_setting("local_max_iter", 20, "local Newton iterations", 1, 1e6),
-          choice_setting("line_search", "goldstein-price", {"goldstein-price", "armijo", "none"},
-                         "line search of the local Newton")};
+  const NewtonDefaults d;
+  return {real_setting("local_tol", d.tol, "local Newton tolerance on ||G||", 0, 1),
+          integer_setting("local_max_iter", d.max_iter, "local Newton iterations", 1, 1e6),
+          enum_setting("line_search", d.search.line_search, "line search of the local Newton")};
 }
 
 inline std::vector<SettingSpec> projection_settings() {
-  return {real_setting("rho_scale", 1.0, "projection step rho = rho_scale / lambda_max(W^aa)", 1e-6,
-                       1.99)};
+  return {real_setting("rho_scale", ProjectionDefaults().rho_scale,
+                       "projection step rho = rho_scale / lambda_max(W^aa)", 1e-6, 1.99)};
+}
+
+inline std::vector<SettingSpec> projection_iterative_settings() {
+  const ProjectionIterativeDefaults d;
+  return {real_setting("local_tol", d.tol, "local residual tolerance (relative to ||qhat||)", 0, 1),
+          integer_setting("local_max_iter", d.max_iter, "local iterations", 1, 1e6),
+          real_setting("regularization", d.regularization, "proximal weight / lambda_max(W^aa)", 0,
+                       1e6)};
+}
+
+inline std::vector<SettingSpec> hybrid_settings() {
+  std::vector<SettingSpec> v = newton_settings();
+  v.push_back(integer_setting("projection_max_iter",
+                              local::Hybrid<Coulomb3D>::Settings().projection.max_iter,
+                              "iterations of the projection fallback", 1, 1e6));
+  return v;
 }
 
 }  // namespace nsgs_detail
@@ -156,12 +179,11 @@ inline void add_nsgs_solvers(std::vector<SolverEntry>& v) {
       projection_settings(), configure_projection));
   v.push_back(make_entry<local::ProjectionIterative>(
       "nsgs-proj-iter", "nonsmooth Gauss-Seidel, projection iterated to local convergence",
-      {real_setting("local_tol", 1e-12, "local residual tolerance (relative to ||qhat||)", 0, 1),
-       integer_setting("local_max_iter", 100, "local iterations", 1, 1e6),
-       real_setting("regularization", 0.0, "proximal weight / lambda_max(W^aa)", 0, 1e6)},
-      configure_projection_iterative));
+      projection_iterative_settings(), configure_projection_iterative));
   v.push_back(make_entry<local::Enumerative>(
       "nsgs-exact", "nonsmooth Gauss-Seidel, exact one-contact solution by enumeration",
+      // Off here, unlike the struct's fast mode that "nsgs" runs: this
+      // entry is the full enumeration.
       {boolean_setting("newton_first", false,
                        "try Newton on the sliding direction before the full enumeration")},
       configure_enumerative));
@@ -171,14 +193,9 @@ inline void add_nsgs_solvers(std::vector<SolverEntry>& v) {
   v.push_back(make_entry<local::FischerBurmeisterNewton>(
       "nsgs-fb", "nonsmooth Gauss-Seidel, local Fischer-Burmeister semismooth Newton",
       newton_settings(), configure_newton));
-  {
-    std::vector<SettingSpec> hybrid = newton_settings();
-    hybrid.push_back(integer_setting("projection_max_iter", 200,
-                                     "iterations of the projection fallback", 1, 1e6));
-    v.push_back(make_entry<local::Hybrid>(
-        "nsgs-hybrid", "nonsmooth Gauss-Seidel, local Newton with a projection fallback",
-        std::move(hybrid), configure_hybrid));
-  }
+  v.push_back(make_entry<local::Hybrid>(
+      "nsgs-hybrid", "nonsmooth Gauss-Seidel, local Newton with a projection fallback",
+      hybrid_settings(), configure_hybrid));
   // omega = 1.5: over-relaxation helps every rigid problem of the shared
   // set (1.5 beat 0.8 and 1.2 on all of them); FEM problems may want < 1.
   v.push_back(make_entry<local::Projection>(

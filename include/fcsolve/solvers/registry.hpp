@@ -23,6 +23,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fcsolve {
@@ -71,8 +72,43 @@ struct SolverEntry {
   /// Typical iteration budget when the caller gives none (max_iter <= 0).
   int default_max_iter = 1000;
   LocalSolveFunction solve_local;    ///< FC/II; may be empty if global-only
-  GlobalSolveFunction solve_global;  ///< FC/I natively; empty: by reduction
+  /// FC/I natively (in (v, r), W never formed); empty: the registry reduces
+  /// FC/I to FC/II and runs solve_local. A native solver whose formulation
+  /// has no bilateral constraints (G, b) reduces those problems itself, with
+  /// solve_by_reduction() below.
+  GlobalSolveFunction solve_global;
+
+  /// Whether FC/I problems reach a native global solver (the flag the
+  /// registry and `fcsolve solvers` go by).
+  bool solves_global_natively() const { return bool(solve_global); }
 };
+
+/// FC/I through FC/II: reduces p (W = H^T M^-1 H, q; problem/reduction.hpp),
+/// runs `solve_reduced(LocalProblemView)` and recovers v (and lambda when p
+/// has bilateral constraints). `q_norm`, if given, receives the error scale.
+/// The one place the registry and the native entries reduce.
+template <class Backend = DefaultBackend, class SolveReduced>
+SolveOutcome solve_by_reduction(const GlobalProblemView& p, SolveReduced&& solve_reduced,
+                                double* q_norm = nullptr) {
+  GlobalReduction<Backend> reduction(p);
+  const double reduce_seconds = reduction.seconds();
+  SolveOutcome out = solve_reduced(LocalProblemView(reduction.local()));
+  out.v = reduction.velocity(out.r);
+  if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
+  out.info.setup_seconds += reduce_seconds;
+  if (q_norm) *q_norm = reduction.free_velocity_norm();
+  return out;
+}
+
+/// solve_by_reduction() for a native FC/I entry that cannot take (G, b):
+/// the message says the reduced form was solved.
+template <class SolveReduced>
+SolveOutcome solve_bilateral_by_reduction(const GlobalProblemView& p, SolveReduced&& solve_reduced) {
+  SolveOutcome out = solve_by_reduction(p, std::forward<SolveReduced>(solve_reduced));
+  out.info.message = "bilateral constraints: solved in the reduced form" +
+                     (out.info.message.empty() ? std::string() : "; " + out.info.message);
+  return out;
+}
 
 /// The starting reactions of a solve: the request's warm start, else zero.
 inline Vector initial_reactions(const SolveRequest& req, Index size) {
@@ -157,18 +193,13 @@ SolveOutcome solve(const GlobalProblemView& p, const SolverEntry& e, const Solve
   detail::check_warm_start(req.v0, p.num_dofs(), "v0");
   SolveOutcome out;
   double q_norm;
-  if (e.solve_global) {
+  if (e.solves_global_natively()) {
     out = e.solve_global(p, req);
     q_norm = GlobalReduction<Backend>(p, /*form_W=*/false).free_velocity_norm();  // error scale
   } else {
     if (!e.solve_local) throw UsageError("solver '" + e.name + "' has no entry point");
-    GlobalReduction<Backend> reduction(p);
-    const double reduce_seconds = reduction.seconds();
-    out = solve(LocalProblemView(reduction.local()), e, req);
-    out.v = reduction.velocity(out.r);
-    if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
-    out.info.setup_seconds += reduce_seconds;
-    q_norm = reduction.free_velocity_norm();
+    out = solve_by_reduction<Backend>(
+        p, [&](const LocalProblemView& reduced) { return solve(reduced, e, req); }, &q_norm);
   }
   detail::check_returned(out.r, p.size(), e.name, "r");
   detail::check_returned(out.v, p.num_dofs(), e.name, "v");

@@ -5,6 +5,7 @@
 // out-of-range value raises a UsageError instead of being ignored.
 #pragma once
 
+#include <fcsolve/core/enum_names.hpp>
 #include <fcsolve/core/exceptions.hpp>
 
 #include <cerrno>
@@ -60,6 +61,12 @@ inline SettingSpec choice_setting(std::string name, std::string def,
                                   std::vector<std::string> choices, std::string doc) {
   return {std::move(name), SettingType::Choice, std::move(def), std::move(doc),
           std::move(choices)};
+}
+
+/// A choice among the names of enum E (core/enum_names.hpp), in table order.
+template <class E>
+SettingSpec enum_setting(std::string name, E def, std::string doc) {
+  return choice_setting(std::move(name), enum_to_string(def), enum_choices<E>(), std::move(doc));
 }
 
 inline std::string format_value(const SettingValue& v) {
@@ -126,6 +133,11 @@ class SettingValues {
   double real(const std::string& name) const { return std::get<double>(get(name)); }
   long long integer(const std::string& name) const { return std::get<long long>(get(name)); }
   bool boolean(const std::string& name) const { return std::get<bool>(get(name)); }
+  /// The value of an enum_setting, parsed by the enum's own name table.
+  template <class E>
+  E enumerated(const std::string& name) const {
+    return parse_enum<E>(choice(name), name.c_str());
+  }
   const std::string& choice(const std::string& name) const {
     return std::get<std::string>(get(name));
   }

@@ -1,24 +1,30 @@
 // Catalogue entries of the VI projection family: vi-fp, vi-eg.
 #pragma once
 
+#include <fcsolve/core/solver_contract.hpp>
+#include <fcsolve/solvers/dispatch.hpp>
 #include <fcsolve/solvers/registry.hpp>
 #include <fcsolve/vi.hpp>
+
+#include <utility>
+#include <vector>
 
 namespace fcsolve {
 namespace registry {
 
 namespace detail {
 
-template <class Cone, class Storage>
+template <class Solver>
 SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
                              ProjectionVariant variant) {
-  ProjectedFixedPointSettings s;
+  static_assert(satisfies_solver_contract_v<Solver, LocalProblemView>);
+  typename Solver::Settings s;
   static_cast<SolverSettings&>(s) = req.common;
   s.variant = variant;
   s.rho = req.settings.real("rho");
   s.ratio_max = req.settings.real("ratio_max");
   s.ratio_min = req.settings.real("ratio_min");
-  ProjectedFixedPoint<Cone, Storage> solver(s);
+  Solver solver(s);
   solver.compute(p);
   SolveOutcome out;
   out.r = initial_reactions(req, p.size());
@@ -29,30 +35,44 @@ SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
 
 inline LocalSolveFunction projected_solver(ProjectionVariant variant) {
   return [variant](const LocalProblemView& p, const SolveRequest& req) {
-    return dispatch_cone(p.d, [&](auto cone) {
-      using Cone = decltype(cone);
-      if (p.num_contacts() <= kDenseStorageMaxContacts)
-        return solve_projected<Cone, DenseStorage<Cone::dim>>(p, req, variant);
-      return solve_projected<Cone, SparseStorage<Cone::dim>>(p, req, variant);
+    return dispatch_cone_and_storage<SparseStorage>(p, [&](auto types) {
+      using T = decltype(types);
+      return solve_projected<ProjectedFixedPoint<typename T::Cone, typename T::Storage>>(p, req,
+                                                                                       variant);
     });
   };
 }
 
 inline std::vector<SettingSpec> projected_settings() {
-  return {real_setting("rho", 0.0, "initial step (0: 1 / ||W||_1)", 0.0),
-          real_setting("ratio_max", 0.9, "shrink rho while rho ||F(r)-F(rb)|| > ratio_max ||r-rb||", 1e-6, 1.0),
-          real_setting("ratio_min", 0.3, "grow rho when the ratio falls below this", 0.0, 1.0)};
+  const ProjectedFixedPointSettings d;
+  return {real_setting("rho", d.rho, "initial step (0: 1 / ||W||_1)", 0.0),
+          real_setting("ratio_max", d.ratio_max,
+                       "shrink rho while rho ||F(r)-F(rb)|| > ratio_max ||r-rb||", 1e-6, 1.0),
+          real_setting("ratio_min", d.ratio_min, "grow rho when the ratio falls below this", 0.0,
+                       1.0)};
+}
+
+inline SolverEntry projected_entry(std::string name, std::string summary,
+                                   ProjectionVariant variant) {
+  SolverEntry e;
+  e.name = std::move(name);
+  e.family = "vi";
+  e.summary = std::move(summary);
+  e.settings = projected_settings();
+  e.default_max_iter = 20000;
+  e.solve_local = projected_solver(variant);
+  return e;
 }
 
 }  // namespace detail
 
 inline void add_vi_solvers(std::vector<SolverEntry>& v) {
-  v.push_back({"vi-fp", "vi", "projected fixed point on the VI, self-adaptive step (FP-VI-UPK)",
-               detail::projected_settings(), false, 20000,
-               detail::projected_solver(ProjectionVariant::FixedPoint), {}});
-  v.push_back({"vi-eg", "vi", "extragradient on the VI, self-adaptive step (EG-VI-UPK)",
-               detail::projected_settings(), false, 20000,
-               detail::projected_solver(ProjectionVariant::ExtraGradient), {}});
+  v.push_back(detail::projected_entry(
+      "vi-fp", "projected fixed point on the VI, self-adaptive step (FP-VI-UPK)",
+      ProjectionVariant::FixedPoint));
+  v.push_back(detail::projected_entry(
+      "vi-eg", "extragradient on the VI, self-adaptive step (EG-VI-UPK)",
+      ProjectionVariant::ExtraGradient));
 }
 
 }  // namespace registry

@@ -14,11 +14,15 @@
 #pragma once
 
 #include <fcsolve/core/error.hpp>
+#include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/problem/local_problem.hpp>
+#include <fcsolve/problem/validate.hpp>
 
 #include <cmath>
+#include <optional>
+#include <string>
 
 namespace fcsolve {
 
@@ -41,10 +45,17 @@ class ProjectedFixedPoint {
 
   explicit ProjectedFixedPoint(const Settings& s = {}) : settings_(s) {}
   Settings& settings() { return settings_; }
+  const Settings& settings() const { return settings_; }
   const SolverInfo& info() const { return info_; }
 
+  /// Validates p (InvalidProblem on inconsistent data) and prepares the
+  /// step. The viewed data must outlive *this.
   ProjectedFixedPoint& compute(const LocalProblemView& p) {
     Stopwatch clock;
+    if (p.d != d)
+      throw InvalidProblem("spacedim", "this solver is compiled for d = " + std::to_string(d) +
+                                           ", the problem has d = " + std::to_string(p.d));
+    validate(p);
     problem_.emplace(p);
     W_.compute(p.W);
     const Index m = p.size();
@@ -69,6 +80,7 @@ class ProjectedFixedPoint {
   /// r: warm start in, solution out; u = W r + q on return.
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
     Stopwatch clock;
+    check_solve_arguments(r, u);
     info_.status = Status::MaxIterations;
     info_.iterations = 0;
     info_.history.clear();
@@ -111,6 +123,15 @@ class ProjectedFixedPoint {
   }
 
  private:
+  void check_solve_arguments(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& u) const {
+    if (!problem_) throw UsageError("ProjectedFixedPoint::solve() called before compute()");
+    const Index m = problem_->size();
+    if (r.size() != m || u.size() != m)
+      throw InvalidProblem("r", "expected r and u with " + std::to_string(m) + " entries, got " +
+                                    std::to_string(r.size()) + " and " + std::to_string(u.size()));
+    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+  }
+
   /// F = u~(x) = W x + q + g(W x + q); returns the FCLIB error of x. u_ = W x + q.
   double evaluate(const Eigen::Ref<const Vector>& x, Vector& F) {
     const LocalProblemView& p = *problem_;
