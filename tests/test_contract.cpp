@@ -222,3 +222,25 @@ TEST_CASE("every catalogue entry honours the solver contract", "[contract][catal
   }
   CHECK(applicable >= int(registry::entries().size()));  // each applies somewhere
 }
+
+TEST_CASE("every settings enum parses what its to_string writes, and nothing else",
+          "[contract][registry]") {
+  auto round_trip = [](auto values) {
+    using E = typename decltype(values)::value_type;
+    for (const E e : values) CHECK(parse_enum<E>(enum_to_string(e), "setting") == e);
+    CHECK_THROWS_AS(parse_enum<E>("no-such-value", "setting"), UsageError);
+    CHECK(enum_choices<E>().size() == values.size());
+  };
+  round_trip(std::vector<LineSearch>{LineSearch::None, LineSearch::Armijo, LineSearch::GoldsteinPrice});
+  round_trip(std::vector<RhoStrategy>{RhoStrategy::Constant, RhoStrategy::SpectralNorm,
+                                      RhoStrategy::SplitSpectralNorm, RhoStrategy::Adaptive});
+  round_trip(std::vector<ContactOrdering>{ContactOrdering::Natural, ContactOrdering::ShuffledOnce,
+                                          ContactOrdering::ShuffledEachSweep});
+  // the catalogue offers exactly the enum's names, its default among them
+  const registry::SolverEntry& e = registry::find("nsn-ac");
+  registry::SolveRequest req = registry::make_request(e);
+  CHECK(req.settings.enumerated<LineSearch>("line_search") == NewtonSettings().line_search);
+  CHECK(req.settings.enumerated<RhoStrategy>("rho_strategy") == NewtonSettings().rho_strategy);
+  req.settings.set_text("line_search", "armijo");
+  CHECK(req.settings.enumerated<LineSearch>("line_search") == LineSearch::Armijo);
+}
