@@ -23,7 +23,8 @@ struct GenerateRequest {
 const std::vector<std::string>& scene_names();
 
 /// Checks the request (UsageError on a bad value), runs the trajectory,
-/// writes the snapshot, prints one key=value line. Returns the exit code.
+/// writes the snapshot, prints one key=value line. Returns the exit code
+/// (1: no step had a contact, nothing written).
 int generate(const GenerateRequest& request);
 
 }  // namespace fcsolve_cli
