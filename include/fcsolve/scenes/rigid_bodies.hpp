@@ -54,22 +54,18 @@ class RigidBodies {
   int add(const Vec3& x, double m, const Vec3& J, const Vec3& v = Vec3::Zero()) {
     x_.push_back(x);
     mass_.push_back(m);
-    const Index k = Index(6 * (x_.size() - 1));
-    minv_.conservativeResize(k + 6);
-    minv_.segment<3>(k).setConstant(1.0 / m);
-    minv_.segment<3>(k + 3) = J.cwiseInverse();
-    V_.conservativeResize(k + 6);
-    V_.segment<3>(k) = v;
-    V_.segment<3>(k + 3).setZero();
+    const Vec3 Jinv = J.cwiseInverse();
+    minv_.insert(minv_.end(), {1.0 / m, 1.0 / m, 1.0 / m, Jinv.x(), Jinv.y(), Jinv.z()});
+    V_.insert(V_.end(), {v.x(), v.y(), v.z(), 0.0, 0.0, 0.0});
     return int(x_.size() - 1);
   }
 
   int count() const { return int(x_.size()); }
-  Index dofs() const { return V_.size(); }
+  Index dofs() const { return Index(V_.size()); }
   const Vec3& position(int i) const { return x_[std::size_t(i)]; }
   double mass(int i) const { return mass_[std::size_t(i)]; }
-  const Vector& inverse_mass() const { return minv_; }  ///< diagonal of M^-1
-  const Vector& velocity() const { return V_; }
+  VectorMap inverse_mass() const { return VectorMap(minv_.data(), dofs()); }  ///< diagonal of M^-1
+  VectorMap velocity() const { return VectorMap(V_.data(), dofs()); }
 
   /// R^T (relative velocity at the contact point) for the generalised
   /// velocity V: the contact's rows of H^T V.
@@ -97,28 +93,28 @@ class RigidBodies {
   /// x+ = x + h (theta v+ + (1 - theta) v), then v = v+.
   void advance(const Vector& V_next, double h, double theta) {
     for (std::size_t i = 0; i < x_.size(); ++i)
-      x_[i] += h * (theta * V_next.segment<3>(6 * Index(i)) + (1 - theta) * V_.segment<3>(6 * Index(i)));
-    V_ = V_next;
+      x_[i] += h * (theta * V_next.segment<3>(6 * Index(i)) + (1 - theta) * velocity().segment<3>(6 * Index(i)));
+    Eigen::Map<Vector>(V_.data(), dofs()) = V_next;
   }
 
   /// Gravity's impulse over a step, h f_ext (gravity along -z).
   Vector gravity_impulse(double h, double g) const {
-    Vector f = Vector::Zero(V_.size());
+    Vector f = Vector::Zero(dofs());
     for (std::size_t i = 0; i < x_.size(); ++i) f[6 * Index(i) + 2] = -h * mass_[i] * g;
     return f;
   }
 
   double max_speed() const {
     double s = 0;
-    for (std::size_t i = 0; i < x_.size(); ++i) s = std::max(s, V_.segment<3>(6 * Index(i)).norm());
+    for (std::size_t i = 0; i < x_.size(); ++i) s = std::max(s, velocity().segment<3>(6 * Index(i)).norm());
     return s;
   }
 
  private:
   std::vector<Vec3> x_;
   std::vector<double> mass_;
-  Vector V_;     ///< (v_i, omega_i) per body
-  Vector minv_;  ///< the diagonal of M^-1
+  std::vector<double> V_;     ///< (v_i, omega_i) per body (std::vector: bodies are added one by one)
+  std::vector<double> minv_;  ///< the diagonal of M^-1
 };
 
 }  // namespace fcsolve::scenes

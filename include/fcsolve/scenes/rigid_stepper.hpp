@@ -35,7 +35,7 @@ class RigidStepper {
 
   const StepReport& step() {
     RigidBodies& bodies = scene_.bodies();
-    const Vector& minv = bodies.inverse_mass();
+    const VectorMap minv = bodies.inverse_mass();
     V_ = bodies.velocity();
     impulse_ = bodies.gravity_impulse(s_.h, s_.gravity);
     V_next_ = V_ + minv.cwiseProduct(impulse_);  // v_free
@@ -95,7 +95,7 @@ class RigidStepper {
   /// The last step's FC/I: M = diag(m_i I3, J_i), f = M v + h f_ext (so that
   /// M^-1 f = v_free), H, w, mu.
   GlobalProblem global() const {
-    const Vector& minv = scene_.bodies().inverse_mass();
+    const VectorMap minv = scene_.bodies().inverse_mass();
     const Index n = minv.size();
     GlobalProblem g;
     g.d = 3;
