@@ -5,9 +5,9 @@
 # a Newton method that factorises at every iteration), mu from 0 to 2, mass ratios up to 10^4, with and
 # without penetration correction. Written OUTSIDE the repository:
 #   bash scripts/corpus.sh [OUT_DIR]     (default $FCSOLVE_CORPUS, else /tmp/fcsolve-corpus)
-# Each problem is written as FC/I (NAME.hdf5) and, where W stays sparse
-# (rigid scenes; elastic ones up to 1500 contacts), as its FC/II reduction
-# (NAME-local.hdf5). OUT_DIR/MANIFEST.csv has one row per file:
+# Each problem is written as FC/I (NAME.hdf5) and as its FC/II reduction
+# (NAME-local.hdf5) for rigid scenes and elastic ones up to 1000 contacts
+# (an elastic scene's W is dense: 110 MB at 1000). OUT_DIR/MANIFEST.csv has one row per file:
 #   file,scene,nc,n,mu,mass_ratio,penetration_correction,seed,kind,holdout,seconds
 # n is the number of dofs of FC/I (also on the local file's row). Problems
 # whose seed is a multiple of 3 (a third) are held out (holdout=1): tune on
@@ -65,13 +65,13 @@ for spec in "${specs[@]}"; do
         --out "$OUT/$name.hdf5")
   [[ "$ratio" != "-" ]] && args+=(--mass-ratio "$ratio")
   local_file=""
-  if [[ "$scene" != fem-* || "$contacts" -le 1500 ]]; then
+  if [[ "$scene" != fem-* || "$contacts" -le 1000 ]]; then
     local_file="$name-local.hdf5"
     args+=(--local-out "$OUT/$local_file")
   fi
   t0=$(date +%s.%N)
   line=$("$CLI" "${args[@]}")
-  seconds=$(echo "$(date +%s.%N) - $t0" | bc)
+  seconds=$(printf "%.3f" "$(echo "$(date +%s.%N) - $t0" | bc)")
   echo "$line"
   field() { sed -n "s/.* $1=\([^ ]*\).*/\1/p" <<<" $line"; }
   holdout=$((seed % 3 == 0 ? 1 : 0))
