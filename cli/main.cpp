@@ -7,10 +7,13 @@
 //   fcsolve solvers [--json]
 //   fcsolve check FILE [--json]   existence (Slater) check and diagnostics
 //   fcsolve run FILE... [--solvers a,b,...] [--tol 1e-8] [--max-time S]
+//   fcsolve generate SCENE [--contacts N] [--seed S] [--mu X] [--mass-ratio R]
+//                 [--penetration-correction B] [--steps K] [--out F.hdf5] [--local-out F.hdf5]
 //   fcsolve bench PROBLEMS... [options]  /  fcsolve report DIR   (benchmark
 //                 campaigns: forwarded to the Python runner fcsolve.campaign)
 // Exit codes: 0 solved (or command done), 1 tolerance not reached, 2 bad input
 // or usage (message on stderr), 3 internal error.
+#include "generate.hpp"
 #include "isolated_read.hpp"
 #include "json_writer.hpp"
 
@@ -55,6 +58,12 @@ const char* kUsage =
     "                                           diagnostics: d nc / n, rank(H), cond(W)\n"
     "  run FILE... [--solvers a,b] [--tol X] [--max-time S]\n"
     "                                           solve many files, print a table\n"
+    "  generate SCENE [--contacts N (100)] [--seed S (1)] [--mu X (0.5)] [--mass-ratio R]\n"
+    "        [--penetration-correction B (0)] [--steps K] [--out FILE.hdf5] [--local-out FILE.hdf5]\n"
+    "                                           write an FC/I (--out) and/or FC/II (--local-out)\n"
+    "                                           problem taken along a simulated trajectory; SCENE:\n"
+    "                                           sphere-pile box-stack wall tower heavy-on-light\n"
+    "                                           fem-block fem-two-bodies\n"
     "  bench PROBLEMS... [--solvers all,siconos:nsgs] [--tol 1e-4,1e-8] [--timeout 20]\n"
     "        [--out DIR] [--jobs N] [--dask ADDRESS] [--report]   benchmark campaign (CSV)\n"
     "  report DIR                               charts and HTML page of a campaign\n"
@@ -576,6 +585,31 @@ int cmd_run(Args args) {
   return kExitSolved;
 }
 
+// ---------------------------------------------------------------- generate
+
+int cmd_generate(Args args) {
+  fcsolve_cli::GenerateRequest r;
+  if (auto v = args.take("contacts")) r.contacts = long(parse_int("contacts", *v));
+  if (auto v = args.take("seed")) r.seed = long(parse_int("seed", *v));
+  if (auto v = args.take("mu")) r.mu = parse_double("mu", *v);
+  if (auto v = args.take("mass-ratio")) {
+    r.mass_ratio = parse_double("mass-ratio", *v);
+    if (!(r.mass_ratio >= 1)) throw UsageError("generate: --mass-ratio must be in [1, 1e4]");
+  }
+  if (auto v = args.take("penetration-correction"))
+    r.penetration_correction = parse_double("penetration-correction", *v);
+  if (auto v = args.take("steps")) {
+    r.steps = long(parse_int("steps", *v));
+    if (r.steps < 1) throw UsageError("generate: --steps must be in [1, 100000]");
+  }
+  if (auto v = args.take("out")) r.out = *v;
+  if (auto v = args.take("local-out")) r.local_out = *v;
+  args.expect_no_more_options();
+  if (args.positional.size() != 1) throw UsageError("generate takes exactly one SCENE");
+  r.scene = args.positional[0];
+  return fcsolve_cli::generate(r);
+}
+
 // ---------------------------------------------------------------- bench, report
 
 bool is_file(const std::string& path) { return access(path.c_str(), R_OK) == 0; }
@@ -650,6 +684,7 @@ int main(int argc, char** argv) {
     if (command == "check") return cmd_check(args);
     if (command == "run") return cmd_run(args);
     if (command == "error") return cmd_error(args);
+    if (command == "generate") return cmd_generate(args);
     if (command == "version" || command == "--version") {
       std::cout << "fcsolve " << FCSOLVE_VERSION_STRING << "\n";
       return kExitSolved;

@@ -9,6 +9,9 @@
 // cannot shorten.
 #pragma once
 
+#include <fcsolve/core/status.hpp>
+#include <fcsolve/scenes/step_report.hpp>
+
 #include <cstdio>
 #include <string>
 
@@ -32,6 +35,14 @@ class StepLog {
     if (!quiet_)
       std::printf("%ld %ld %d %.3e %.3e %.3e %s\n", k, contacts, iterations, error, seconds,
                   setup_seconds, status.c_str());
+  }
+
+  /// The line of a stepper's step (no-contact when it had none).
+  void step(const fcsolve::scenes::StepReport& s) {
+    if (s.contacts == 0) step(s.step, 0, 0, 0.0, 0.0, 0.0, "no-contact", true);
+    else
+      step(s.step, s.contacts, s.info.iterations, s.info.error, s.seconds, s.info.setup_seconds,
+           fcsolve::to_string(s.info.status), s.info.converged());
   }
 
   void summary() const {

@@ -1,5 +1,6 @@
 // What a time-stepping scheme puts in w and which contacts it keeps, shared by
-// mbs_pile and fem_contact.
+// every scene (rigid_stepper.hpp, elastic_stepper.hpp), the examples and
+// `fcsolve generate`.
 //
 // Moreau-Jean scheme (Jean 1999, "The non-smooth contact dynamics method",
 // CMAME 177; Acary & Brogliato 2008, "Numerical Methods for Nonsmooth
@@ -23,7 +24,7 @@
 
 #include <algorithm>
 
-namespace stepping {
+namespace fcsolve::scenes {
 
 struct ContactLaw {
   double restitution = 0.0;  ///< e, Newton's coefficient
@@ -39,4 +40,4 @@ struct ContactLaw {
   }
 };
 
-}  // namespace stepping
+}  // namespace fcsolve::scenes

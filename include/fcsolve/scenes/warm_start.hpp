@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <unordered_map>
 
-namespace stepping {
+namespace fcsolve::scenes {
 
 class WarmStart {
  public:
@@ -39,4 +39,4 @@ class WarmStart {
   std::unordered_map<Key, Vec3> previous_, next_;
 };
 
-}  // namespace stepping
+}  // namespace fcsolve::scenes
