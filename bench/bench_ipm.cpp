@@ -12,6 +12,8 @@
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/nipm.hpp>
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -27,12 +29,12 @@ using namespace fcsolve::ipm;
 std::vector<std::string> global_files() {
   namespace fs = std::filesystem;
   std::vector<std::string> out;
-  const fs::path shared = fs::path(FCSOLVE_SHARED_DATA) / "global";
+  const fs::path shared = fs::path(fcsolve_bench::paths::shared_data) / "global";
   if (fs::is_directory(shared)) {
     for (const auto& e : fs::directory_iterator(shared))
       if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
   } else {
-    for (const auto& e : fs::directory_iterator(FCSOLVE_BUNDLED_DATA))
+    for (const auto& e : fs::directory_iterator(fcsolve_bench::paths::bundled_data))
       if (e.path().extension() == ".hdf5" && fclib::detect_kind(e.path().string()) == fclib::Kind::Global)
         out.push_back(e.path().string());
   }

@@ -13,10 +13,16 @@
 
 namespace fcsolve_bench {
 
+/// Set by CMake in the generated bench_paths.cpp (bench/bench_paths.cpp.in).
+namespace paths {
+extern const char* const bundled_data;  // examples/data
+extern const char* const shared_data;   // ../shared/data/fclib beside the checkout
+}  // namespace paths
+
 /// Folder of the problems: $FCSOLVE_BENCH_DATA, else the bundled examples/data.
 inline std::string data_dir() {
   if (const char* env = std::getenv("FCSOLVE_BENCH_DATA"); env && *env) return env;
-  return FCSOLVE_BENCH_DATA;
+  return paths::bundled_data;
 }
 
 inline std::string data_file(const std::string& name) { return data_dir() + "/" + name + ".hdf5"; }

@@ -38,6 +38,10 @@
 #include <string>
 #include <vector>
 
+namespace fcsolve_cli {
+extern const char* const campaign_source_dir;  // generated: cli/source_paths.cpp.in
+}  // namespace fcsolve_cli
+
 namespace {
 
 using namespace fcsolve;
@@ -635,9 +639,7 @@ std::string campaign_dir(const std::string& self) {
 #ifdef FCSOLVE_CAMPAIGN_RELATIVE_DIR
       bindir + "/" + FCSOLVE_CAMPAIGN_RELATIVE_DIR,
 #endif
-#ifdef FCSOLVE_CAMPAIGN_SOURCE_DIR
-      FCSOLVE_CAMPAIGN_SOURCE_DIR,
-#endif
+      fcsolve_cli::campaign_source_dir,
   };
   for (const auto& dir : candidates)
     if (is_file(dir + "/__main__.py")) return dir;

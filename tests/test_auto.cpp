@@ -9,6 +9,8 @@
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/solve.hpp>
 
+#include "test_support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -156,7 +158,7 @@ TEST_CASE("auto: strongly coupled contacts, closed form, Newton takes over", "[a
 TEST_CASE("auto: a bundled FCLIB problem of each kind", "[auto][fclib]") {
   for (const char* name : {"OneObject-i1028-138.hdf5", "Capsules-i101-404.hdf5",
                            "Box_Stacks-i0035-31-0.hdf5"}) {
-    const std::string path = std::string(FCSOLVE_BUNDLED_DATA) + "/" + name;
+    const std::string path = fcsolve_test::bundled(name);
     const fclib::Problem problem = fclib::read_problem(path);
     INFO(name);
     if (const auto* lp = std::get_if<LocalProblem>(&problem)) {

@@ -373,7 +373,7 @@ TEST_CASE("the hostile corpus: every file that must not read throws IoError nami
           "[fclib][bad-input][hostile]") {
   // tests/hostile/files/MANIFEST.json (written by make_hostile.py, indent 1):
   //  "NAME.hdf5": {\n  "commands": "read",\n  "dataset": "fclib_local/W"\n },
-  std::ifstream manifest(std::string(FCSOLVE_HOSTILE_DATA) + "/MANIFEST.json");
+  std::ifstream manifest(fcsolve_test::hostile("MANIFEST.json"));
   REQUIRE(manifest);
   std::string line, name, commands;
   int checked = 0;
@@ -386,7 +386,7 @@ TEST_CASE("the hostile corpus: every file that must not read throws IoError nami
     if (line.find("\"commands\"") != std::string::npos) commands = quoted(line.find(':'));
     if (line.find("\"dataset\"") == std::string::npos || commands != "read") continue;
     const std::string dataset = quoted(line.find(':'));
-    const std::string path = std::string(FCSOLVE_HOSTILE_DATA) + "/" + name;
+    const std::string path = fcsolve_test::hostile(name);
     INFO(name);
     try {
       (void)fclib::read_problem(path);

@@ -15,12 +15,20 @@
 
 namespace fcsolve_test {
 
+/// Set by CMake in the generated test_paths.cpp (tests/test_paths.cpp.in).
+namespace paths {
+extern const char* const shared_data;   // ../shared/data/fclib beside the checkout
+extern const char* const bundled_data;  // examples/data
+extern const char* const hostile_data;  // tests/hostile/files
+extern const char* const scratch_dir;   // the tests' build folder
+}  // namespace paths
+
 /// The shared FCLIB collection: $FCSOLVE_SHARED_DATA when set (CI hides the
 /// collection that way to run the tests as a lone clone has them), else
 /// ../shared/data/fclib beside the checkout (set by CMake).
 inline std::string shared_data_dir() {
   const char* env = std::getenv("FCSOLVE_SHARED_DATA");
-  return env && *env ? std::string(env) : std::string(FCSOLVE_SHARED_DATA);
+  return env && *env ? std::string(env) : std::string(paths::shared_data);
 }
 
 inline bool have_shared_data() {
@@ -38,7 +46,7 @@ inline std::vector<std::string> fclib_files(const std::string& sub) {
       if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
   } else {
     const auto kind = sub == "local" ? fcsolve::fclib::Kind::Local : fcsolve::fclib::Kind::Global;
-    for (const auto& e : fs::directory_iterator(FCSOLVE_BUNDLED_DATA))
+    for (const auto& e : fs::directory_iterator(paths::bundled_data))
       if (e.path().extension() == ".hdf5" && fcsolve::fclib::detect_kind(e.path().string()) == kind)
         out.push_back(e.path().string());
   }
@@ -46,13 +54,17 @@ inline std::vector<std::string> fclib_files(const std::string& sub) {
   return out;
 }
 
+inline std::string hostile(const std::string& name) {
+  return std::string(paths::hostile_data) + "/" + name;
+}
+
 inline std::string bundled(const std::string& name) {
-  return std::string(FCSOLVE_BUNDLED_DATA) + "/" + name;
+  return std::string(paths::bundled_data) + "/" + name;
 }
 
 /// A per-test scratch file name (ctest -j runs tests in parallel).
 inline std::string scratch(const std::string& name) {
-  return std::string(FCSOLVE_TEST_TMP) + "/scratch_" + name;
+  return std::string(paths::scratch_dir) + "/scratch_" + name;
 }
 
 /// The solver contract's typed errors (docs/architecture.md) for a solver
