@@ -26,7 +26,7 @@ OUT = HERE / "files"
 DATA = HERE.parents[1] / "examples" / "data"
 REGRESSIONS = HERE.parents[1] / "fuzz" / "regressions"
 LIBHDF5 = ["libhdf5-local-heap-null-read-1.hdf5", "libhdf5-huge-metadata-alloc-7b02505d.hdf5",
-           "libhdf5-runaway-alloc-1.hdf5"]
+           "libhdf5-runaway-alloc-1.hdf5", "libhdf5-contig-read-null-memcpy.hdf5"]
 LOCAL, GLOBAL = "Rover1039.hdf5", "GFC3D_Example1.hdf5"
 INT_MAX = 2**31 - 1
 

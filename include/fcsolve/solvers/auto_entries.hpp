@@ -32,6 +32,13 @@
 //              stage often converges from a better start where it stalled),
 //   5 sweeps   NSGS for whatever time is left.
 //
+// FC/I is reduced to FC/II (W = H^T M^-1 H) and planned as above when W
+// stays sparse: rigid bodies, M block-diagonal. When M^-1 couples the dofs
+// (an elastic body: W dense, d^2 nc^2 entries) forming W costs more than
+// solving, so the plan stays on FC/I: semismooth Newton in (v, r)
+// (`nsn-ac-global`, W never formed), then the nonsmooth interior point
+// (`nipm`) from scratch for the time left if Newton stalls.
+//
 // Stages switch on iteration counts and measured errors, never on measured
 // times, so a run is deterministic for a given input and settings; the wall
 // clock only cuts a stage when a finite max_time is given, and the budget is
@@ -39,6 +46,7 @@
 #pragma once
 
 #include <fcsolve/core/timer.hpp>
+#include <fcsolve/problem/reduced_density.hpp>
 #include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/solvers/registry.hpp>
 
@@ -78,6 +86,15 @@ inline constexpr int kFullStepStallWindow = 12;
 inline constexpr int kNewtonMaxIter = 300;
 /// Sweeps between two Newton stages.
 inline constexpr int kBridgeSweeps = 500;
+/// FC/I is reduced to FC/II unless M^-1 H fills in (reduced_density.hpp):
+/// rigid bodies measure nnz(M^-1 H) = nnz(H) exactly, elastic bodies 10 to
+/// 10^4 times nnz(H) (M^-1 dense). Forming W then costs one solve with M's
+/// factor per column of H, more than the whole native Newton solve measured
+/// from a hundred contacts on (fem-block, 300 contacts: 0.54 s to reduce,
+/// 0.39 s for nsn-ac-global to 1e-16).
+inline constexpr double kInverseMassFill = 4;
+/// Below this many entries of M^-1 H either way is cheap: reduce.
+inline constexpr double kSmallInverseMassProduct = 1e5;
 
 /// Cheap features of the problem: the plan decides on nc, the kind and
 /// d nc / n; the mu range is reported with them.
@@ -90,6 +107,9 @@ struct Features {
   /// d nc / n: above 1, W = H^T M^-1 H is singular (more contact unknowns
   /// than degrees of freedom: many contacts per body).
   double contact_ratio = 0;
+  /// nnz(M^-1 H) from the sparsity of M, H, G (FC/I only).
+  double inverse_mass_nonzeros = 0;
+  double inverse_mass_fill = 1;  ///< nnz(M^-1 H) / nnz(H)
 };
 
 inline Features local_features(const LocalProblemView& p) {
@@ -110,11 +130,134 @@ inline std::string number(double x) {
   return std::isfinite(x) ? std::string(buf) : std::string("null");
 }
 
-/// The staged run on FC/II: keeps the best iterate and the stage reports.
-class Plan {
+/// What every staged plan shares: the best iterate so far (judged by the
+/// FCLIB error that registry::solve recomputes), the clock and budget, the
+/// stage reports, and finish(). `View` is LocalProblemView (FC/II) or
+/// GlobalProblemView (FC/I solved natively: v is kept with r).
+template <class View>
+class StagedRun {
+ protected:
+  StagedRun(const View& p, const SolveRequest& req, const Features& f)
+      : p_(p), req_(req), f_(f), best_(initial_reactions(req, p.size())) {}
+
+  double tol() const { return req_.common.tol; }
+  bool done() const { return best_error_ <= tol() || out_of_time() || out_of_iterations() || stopped_; }
+  bool out_of_time() const { return clock_.seconds() >= req_.common.max_time; }
+  bool out_of_iterations() const { return iterations_ >= req_.common.max_iter; }
+  int max_iter_left() const { return std::max(req_.common.max_iter - iterations_, 0); }
+  /// A share of the time left (all of it when there is no time limit).
+  double budget(double share) const {
+    const double left = req_.common.max_time - clock_.seconds();
+    return std::isfinite(left) ? std::max(share * left, 0.0) : left;
+  }
+
+  /// Runs one catalogue entry from the best iterate, keeps its result if
+  /// it is better, records the stage.
+  const SolveOutcome& stage(const std::string& label, const std::string& entry_name,
+                            double max_time, int max_iter, const std::string& why,
+                            bool history = false, const char* line_search = nullptr,
+                            int stall_window = 0) {
+    const SolverEntry& entry = find(entry_name);
+    SolveRequest req = make_request(entry);
+    req.common.tol = tol();
+    req.common.max_time = max_time;
+    req.common.max_iter = std::max(max_iter, 1);
+    req.common.record_history = history || req_.common.record_history;
+    if (req_.common.callback) {
+      // The caller sees one run: iterations and seconds continue across stages.
+      req.common.callback = [this](const IterationInfo& it) {
+        IterationInfo whole = it;
+        whole.iteration += iterations_;
+        whole.seconds = clock_.seconds();
+        return req_.common.callback(whole);
+      };
+    }
+    if (line_search) req.settings.set("line_search", std::string(line_search));
+    if (stall_window > 0) req.settings.set("stall_window", (long long)stall_window);
+    req.r0 = best_;
+    req.v0 = best_v_;
+    last_ = registry::solve(p_, entry, req);
+    last_status_ = last_.info.status;
+    iterations_ += last_.info.iterations;
+    setup_seconds_ += last_.info.setup_seconds;
+    if (req_.common.record_history) {
+      // A stage that records its starting point repeats the previous one's end.
+      const auto& h = last_.info.history;
+      const bool with_start = !history_.empty() && int(h.size()) > last_.info.iterations;
+      history_.insert(history_.end(), h.begin() + (with_start ? 1 : 0), h.end());
+    }
+    if (last_status_ == Status::Stopped) stopped_ = true;
+    if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
+      best_error_ = last_.info.error;
+      best_ = last_.r;
+      best_v_ = last_.v;
+      best_lambda_ = last_.lambda;
+    }
+    if (!reports_.empty()) reports_ += ", ";
+    reports_ += "{\"stage\": \"" + label + "\", \"solver\": \"" + entry_name +
+                "\", \"seconds\": " + number(last_.seconds) +
+                ", \"iterations\": " + std::to_string(last_.info.iterations) +
+                ", \"error\": " + number(last_.info.error) + ", \"status\": \"" +
+                to_string(last_status_) + "\", \"why\": \"" + why + "\"}";
+    StageReport s;
+    s.name = label;
+    s.solver = entry_name;
+    s.seconds = last_.seconds;
+    s.iterations = last_.info.iterations;
+    s.error = last_.info.error;
+    s.status = to_string(last_status_);
+    s.why = why;
+    stages_.push_back(std::move(s));
+    return last_;
+  }
+
+  SolveOutcome finish(const std::string& note = "") {
+    SolveOutcome out;
+    out.r = best_;
+    out.v = best_v_;
+    out.lambda = best_lambda_;
+    out.info.error = best_error_;
+    out.info.iterations = iterations_;
+    out.info.setup_seconds = setup_seconds_;
+    out.info.solve_seconds = clock_.seconds();
+    out.info.history = std::move(history_);
+    out.info.status = best_error_ <= tol()  ? Status::Converged
+                      : stopped_            ? Status::Stopped
+                      : out_of_time()       ? Status::TimeLimit
+                      : out_of_iterations() ? Status::MaxIterations
+                      : !std::isfinite(best_error_) ? Status::NumericalError
+                                                    : Status::Stalled;
+    std::string features = "nc=" + std::to_string(f_.nc) + " d=" + std::to_string(f_.d) +
+                           " mu=[" + number(f_.mu_min) + "," + number(f_.mu_max) + "]";
+    if (f_.global)
+      features += " n=" + std::to_string(f_.n) + " d*nc/n=" + number(f_.contact_ratio) +
+                  " nnz(M^-1 H)/nnz(H)=" + number(f_.inverse_mass_fill);
+    out.info.message = "auto (" + features + "): stages [" + reports_ + "]";
+    if (!note.empty()) out.info.message += "; " + note;
+    out.stages = std::move(stages_);
+    return out;
+  }
+
+  const View& p_;
+  const SolveRequest& req_;
+  Features f_;
+  Stopwatch clock_;
+  Vector best_, best_v_, best_lambda_;
+  double best_error_ = std::numeric_limits<double>::infinity();
+  SolveOutcome last_;
+  Status last_status_ = Status::NotRun;
+  int iterations_ = 0;
+  double setup_seconds_ = 0;
+  bool stopped_ = false;
+  std::vector<double> history_;
+  std::string reports_;
+  std::vector<StageReport> stages_;
+};
+
+/// The staged run on FC/II.
+class Plan : private StagedRun<LocalProblemView> {
  public:
-  Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f)
-      : p_(p), req_(req), f_(f), best_(initial_reactions(req, p.size())) {
+  Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f) : StagedRun(p, req, f) {
     // The starting point's own error: a stage never returns worse than it.
     const Vector u = p.W * best_ + p.q;
     best_error_ = local_error_report(p, best_, u).error;
@@ -171,17 +314,6 @@ class Plan {
   }
 
  private:
-  double tol() const { return req_.common.tol; }
-  bool done() const { return best_error_ <= tol() || out_of_time() || out_of_iterations() || stopped_; }
-  bool out_of_time() const { return clock_.seconds() >= req_.common.max_time; }
-  bool out_of_iterations() const { return iterations_ >= req_.common.max_iter; }
-  int max_iter_left() const { return std::max(req_.common.max_iter - iterations_, 0); }
-  /// A share of the time left (all of it when there is no time limit).
-  double budget(double share) const {
-    const double left = req_.common.max_time - clock_.seconds();
-    return std::isfinite(left) ? std::max(share * left, 0.0) : left;
-  }
-
   /// Semismooth Newton from the best iterate: first with full steps (no
   /// line search), which converge locally superlinearly (Qi & Sun 1993,
   /// Math. Prog. 58) once the sweeps brought r near the solution; measured
@@ -212,119 +344,66 @@ class Plan {
     stage("nsgs", "nsgs", budget(1.0), max_iter_left(), "the rest of the budget to the robust sweeps");
     return finish();
   }
+};
 
-  /// Runs one catalogue entry from the best iterate, keeps its result if
-  /// it is better, records the stage.
-  const SolveOutcome& stage(const std::string& label, const std::string& entry_name,
-                            double max_time, int max_iter, const std::string& why,
-                            bool history = false, const char* line_search = nullptr,
-                            int stall_window = 0) {
-    const SolverEntry& entry = find(entry_name);
-    SolveRequest req = make_request(entry);
-    req.common.tol = tol();
-    req.common.max_time = max_time;
-    req.common.max_iter = std::max(max_iter, 1);
-    req.common.record_history = history || req_.common.record_history;
-    if (req_.common.callback) {
-      // The caller sees one run: iterations and seconds continue across stages.
-      req.common.callback = [this](const IterationInfo& it) {
-        IterationInfo whole = it;
-        whole.iteration += iterations_;
-        whole.seconds = clock_.seconds();
-        return req_.common.callback(whole);
-      };
-    }
-    if (line_search) req.settings.set("line_search", std::string(line_search));
-    if (stall_window > 0) req.settings.set("stall_window", (long long)stall_window);
-    req.r0 = best_;
-    last_ = registry::solve(p_, entry, req);
-    last_status_ = last_.info.status;
-    iterations_ += last_.info.iterations;
-    setup_seconds_ += last_.info.setup_seconds;
-    if (req_.common.record_history) {
-      // A stage that records its starting point repeats the previous one's end.
-      const auto& h = last_.info.history;
-      const bool with_start = !history_.empty() && int(h.size()) > last_.info.iterations;
-      history_.insert(history_.end(), h.begin() + (with_start ? 1 : 0), h.end());
-    }
-    if (last_status_ == Status::Stopped) stopped_ = true;
-    if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
-      best_error_ = last_.info.error;
-      best_ = last_.r;
-    }
-    if (!reports_.empty()) reports_ += ", ";
-    reports_ += "{\"stage\": \"" + label + "\", \"solver\": \"" + entry_name +
-                "\", \"seconds\": " + number(last_.seconds) +
-                ", \"iterations\": " + std::to_string(last_.info.iterations) +
-                ", \"error\": " + number(last_.info.error) + ", \"status\": \"" +
-                to_string(last_status_) + "\", \"why\": \"" + why + "\"}";
-    StageReport s;
-    s.name = label;
-    s.solver = entry_name;
-    s.seconds = last_.seconds;
-    s.iterations = last_.info.iterations;
-    s.error = last_.info.error;
-    s.status = to_string(last_status_);
-    s.why = why;
-    stages_.push_back(std::move(s));
-    return last_;
+/// The staged run on FC/I in (v, r), W never formed (see the top of the
+/// file: an elastic body's W is dense). Starts from the request's r0, v0
+/// when given.
+class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
+ public:
+  NativeGlobalPlan(const GlobalProblemView& p, const SolveRequest& req, const Features& f)
+      : StagedRun(p, req, f) {
+    best_v_ = req.v0.size() ? req.v0 : Vector(Vector::Zero(p.num_dofs()));
   }
 
-  SolveOutcome finish(const std::string& note = "") {
-    SolveOutcome out;
-    out.r = best_;
-    out.info.error = best_error_;
-    out.info.iterations = iterations_;
-    out.info.setup_seconds = setup_seconds_;
-    out.info.solve_seconds = clock_.seconds();
-    out.info.history = std::move(history_);
-    out.info.status = best_error_ <= tol()  ? Status::Converged
-                      : stopped_            ? Status::Stopped
-                      : out_of_time()       ? Status::TimeLimit
-                      : out_of_iterations() ? Status::MaxIterations
-                      : !std::isfinite(best_error_) ? Status::NumericalError
-                                                    : Status::Stalled;
-    std::string features = "nc=" + std::to_string(f_.nc) + " d=" + std::to_string(f_.d) +
-                           " mu=[" + number(f_.mu_min) + "," + number(f_.mu_max) + "]";
-    if (f_.global)
-      features += " n=" + std::to_string(f_.n) + " d*nc/n=" + number(f_.contact_ratio);
-    out.info.message = "auto (" + features + "): stages [" + reports_ + "]";
-    if (!note.empty()) out.info.message += "; " + note;
-    out.stages = std::move(stages_);
-    return out;
+  SolveOutcome run() {
+    const std::string why = "nnz(M^-1 H) = " + number(f_.inverse_mass_fill) +
+                            " nnz(H): M^-1 couples the dofs, W would be dense; FC/I in (v, r)";
+    stage("newton-global", "nsn-ac-global", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()), why,
+          false, nullptr, kNewtonStallWindow);
+    if (done()) return finish();
+    stage("ipm", "nipm", budget(1.0), max_iter_left(),
+          std::string("newton ") + to_string(last_status_) + ": the interior point for the time left");
+    return finish();
   }
-
-  const LocalProblemView& p_;
-  const SolveRequest& req_;
-  Features f_;
-  Stopwatch clock_;
-  Vector best_;
-  double best_error_ = std::numeric_limits<double>::infinity();
-  SolveOutcome last_;
-  Status last_status_ = Status::NotRun;
-  int iterations_ = 0;
-  double setup_seconds_ = 0;
-  bool stopped_ = false;
-  std::vector<double> history_;
-  std::string reports_;
-  std::vector<StageReport> stages_;
 };
 
 inline SolveOutcome solve_local(const LocalProblemView& p, const SolveRequest& req) {
   return Plan(p, req, local_features(p)).run();
 }
 
-/// FC/I: reduced once (W = H^T M^-1 H), the plan runs on FC/II, v (and the
-/// bilateral multipliers) recovered from r. The reduction's time counts
-/// against max_time.
+/// FC/I features, from the data as given (nothing factorised).
+inline Features global_features(const GlobalProblemView& p) {
+  Features f;
+  f.global = true;
+  f.nc = p.num_contacts();
+  f.m = p.size();
+  f.d = p.d;
+  f.n = p.num_dofs();
+  if (f.nc > 0) {
+    f.mu_min = p.mu.minCoeff();
+    f.mu_max = p.mu.maxCoeff();
+  }
+  f.contact_ratio = f.n > 0 ? double(f.m) / double(f.n) : 0;
+  f.inverse_mass_nonzeros = inverse_mass_times_h_nonzeros(p);
+  f.inverse_mass_fill = p.H.nonZeros() > 0 ? f.inverse_mass_nonzeros / double(p.H.nonZeros()) : 1.0;
+  return f;
+}
+
+/// Whether forming W = H^T M^-1 H pays (see kInverseMassFill).
+inline bool reduction_pays(const Features& f) {
+  return f.inverse_mass_fill <= kInverseMassFill || f.inverse_mass_nonzeros <= kSmallInverseMassProduct;
+}
+
+/// FC/I: reduced once (W = H^T M^-1 H) when W stays sparse, the plan runs on
+/// FC/II and v (and the bilateral multipliers) are recovered from r; the
+/// reduction's time counts against max_time. Otherwise solved natively.
 inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest& req) {
+  const Features f = global_features(p);
+  if (!reduction_pays(f)) return NativeGlobalPlan(p, req, f).run();
   Stopwatch clock;
   GlobalReduction<DefaultBackend> reduction(p);
   const LocalProblemView local(reduction.local());
-  Features f = local_features(local);
-  f.global = true;
-  f.n = p.num_dofs();
-  f.contact_ratio = f.n > 0 ? double(f.m) / double(f.n) : 0;
   SolveRequest inner = req;
   inner.common.max_time = req.common.max_time - clock.seconds();
   SolveOutcome out = Plan(local, inner, f).run();
@@ -341,7 +420,7 @@ inline void add_auto_solvers(std::vector<SolverEntry>& v) {
   e.name = "auto";
   e.family = "auto";
   e.summary = "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/Newton fallback; "
-              "each stage from the best iterate";
+              "each stage from the best iterate (FC/I with a dense W: nsn-ac-global, then nipm)";
   e.default_max_iter = 1000000;
   e.solve_local = auto_detail::solve_local;
   e.solve_global = auto_detail::solve_global;
