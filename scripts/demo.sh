@@ -2,7 +2,7 @@
 # The main job on a fresh machine: install what is missing, build the CLI,
 # and solve the FCLIB problems bundled in examples/data with `auto` (the
 # default solver), printing per problem its time and error beside the
-# fastest single fcsolve solver's (scripts/demo_table.py). Extra arguments
+# fastest single fcsolve solver's and Siconos' best (scripts/demo_table.py). Extra arguments
 # go to demo_table.py (e.g. --tol 1e-10, --single-max-time 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."

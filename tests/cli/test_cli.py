@@ -265,3 +265,27 @@ def test_json_output_keeps_a_utf8_title(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stdout.isascii()
     assert json.loads(out.stdout)["title"] == title
+
+
+def _siconos_importable():
+    return subprocess.run(["/usr/bin/python3", "-c", "import siconos.numerics"],
+                          capture_output=True).returncode == 0
+
+
+@pytest.mark.parametrize("with_siconos", [False, True])
+def test_demo_table_rows_and_peer_column(with_siconos):
+    # The main job's table (scripts/demo.sh): one row per file, auto
+    # converged on each, and Siconos' column only when it can run.
+    if with_siconos and not _siconos_importable():
+        pytest.skip("Siconos not importable by /usr/bin/python3 (scripts/deps.sh --peers)")
+    files = [BUNDLED / "Rover1039.hdf5", BUNDLED / "GFC3D_Example1.hdf5"]
+    args = [sys.executable, str(ROOT / "scripts" / "demo_table.py"), "--cli", CLI,
+            "--single-max-time", "2", *map(str, files)]
+    if not with_siconos:
+        args.append("--no-siconos")
+    p = subprocess.run(args, capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stdout + p.stderr
+    lines = p.stdout.splitlines()
+    assert ("siconos best" in lines[0]) == with_siconos
+    rows = [line for line in lines if line.split()[:1] in (["Rover1039"], ["GFC3D_Example1"])]
+    assert len(rows) == 2 and all("converged" in r for r in rows), p.stdout
