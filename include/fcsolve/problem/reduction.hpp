@@ -6,6 +6,10 @@
 //       [ G^T 0 ]
 // and W, q, v take the v-block of K^-1.
 //
+// When M is block-diagonal with small blocks (rigid bodies) W is formed from
+// M's block inverse (problem/block_diagonal_inverse.hpp): the many-right-hand-
+// side solve below is quadratic in the number of contacts.
+//
 // M is factorised once: Cholesky when it is symmetric up to rounding, LU when
 // it is not (the LMGC files: symmetrising M there changes W by 16 %), LU too
 // if Cholesky fails. `Backend` is a linear-algebra policy (EigenBackend,
@@ -15,6 +19,7 @@
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/linalg/eigen_backend.hpp>
+#include <fcsolve/problem/block_diagonal_inverse.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/symmetry.hpp>
 
@@ -65,6 +70,9 @@ class GlobalReduction {
       SparseMatrix Hk = H_;
       Hk.conservativeResize(rows_, H_.cols());
       local_.W = H_.transpose() * SparseMatrix(solve_sparse(Hk).topRows(n_));
+    } else if (const auto Minv = block_diagonal_inverse(p.M, symmetric_)) {
+      // Rigid bodies: linear in the number of contacts (block_diagonal_inverse.hpp).
+      local_.W = H_.transpose() * SparseMatrix(*Minv * H_);
     } else {
       local_.W = H_.transpose() * solve_sparse(H_);
     }
