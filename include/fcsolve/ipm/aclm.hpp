@@ -33,7 +33,6 @@ struct AclmSettings : IpmSettings {
 
 template <class Form>
 class AclmSolver : public IpmSolverBase<Form> {
-  using Base = IpmSolverBase<Form>;
   static constexpr int N = Form::dim;
 
  public:
@@ -115,7 +114,8 @@ class AclmSolver : public IpmSolverBase<Form> {
       // loop has divided it by 10 since a polish that did not finish.
       if (st.polish && error < st.polish_below && error < 0.1 * failed_polish_error) {
         Vector rp = r, wp = w;
-        const PolishResult pr = this->polish(st, rp, wp, nullptr, st.tol);
+        const PolishResult pr = this->polish(st, rp, wp, nullptr, st.tol,
+            st.max_time - clock.seconds());
         if (pr.error < best_error) {
           best_error = pr.error;
           best_r = rp;

@@ -328,8 +328,6 @@ class InteriorPoint {
     dx = d_.x;
   }
 
-  const ContactState<N>& state() const { return state_; }
-
  private:
   Vec<N> lambda(Index a) const { return state_.scaling[std::size_t(a)].lambda; }
 

@@ -113,14 +113,16 @@ class IpmSolverBase {
 
   /// Newton on the natural map from (r, w); w is v (global) or u (local,
   /// recomputed). `frozen`: the s of the convex problem, null for Coulomb.
+  /// No step starts after `seconds_left` (the rest of the solve's max_time).
   PolishResult polish(const IpmSettings& s, Vector& r, Vector& w, const Vector* frozen,
-                      double target) {
+                      double target, double seconds_left) {
     using Backend = typename Form::Backend;
     if constexpr (Form::is_global) {
       return polish_global<N, Backend>(form_->view(), form_->error_scale(), w, r, frozen, target,
-                                       s.polish_iterations);
+                                       s.polish_iterations, seconds_left);
     } else {
-      PolishResult res = polish_local<N, Backend>(form_->view(), r, frozen, target, s.polish_iterations);
+      PolishResult res = polish_local<N, Backend>(form_->view(), r, frozen, target,
+                                                  s.polish_iterations, seconds_left);
       w = form_->view().W * r + form_->view().q;
       return res;
     }

@@ -10,13 +10,15 @@
 // map of core/error.hpp (rho = 1: its norm is the FCLIB error) through
 // formulation/natural_map.hpp, or, with s frozen, r - P_K(r - u - (mu s, 0)).
 // Steps are damped by backtracking on the squared scaled residual; the polish
-// only ever returns a point at least as good as the one it was given. B gets
+// only ever returns a point at least as good as the one it was given, and
+// starts no step after `max_seconds` (the caller's time budget). B gets
 // a tiny diagonal shift (kJacobianShift): a sticking contact has B_a = 0, and
 // with a rank-deficient H the Jacobian would be singular (the reactions are
 // not unique); the shift picks a small-norm step among them.
 #pragma once
 
 #include <fcsolve/core/error.hpp>
+#include <fcsolve/core/timer.hpp>
 #include <fcsolve/formulation/natural_map.hpp>
 #include <fcsolve/ipm/form_common.hpp>
 #include <fcsolve/ipm/kkt_factorization.hpp>
@@ -35,7 +37,6 @@ namespace ipm {
 struct PolishResult {
   int iterations = 0;
   double initial_error = 0, error = 0;
-  bool improved() const { return error < initial_error; }
 };
 
 /// Diagonal shift added to every B_a (dimensionless: Phi has rho = 1).
@@ -108,7 +109,8 @@ class JacobianSolver {
 /// Polishes (v, r) of FC/I; `q_norm` = ||H^T M^-1 f + w|| (error scale).
 template <int N, class Backend>
 PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v, Vector& r,
-                           const Vector* frozen, double target, int max_iter) {
+                           const Vector* frozen, double target, int max_iter, double max_seconds) {
+  Stopwatch clock;
   const Index n = p.num_dofs(), m = p.size(), nc = p.num_contacts();
   const double qs = q_norm > 0 ? q_norm : 1.0;
   std::vector<Mat<N>> A(static_cast<std::size_t>(nc)), B(static_cast<std::size_t>(nc));
@@ -133,7 +135,7 @@ PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v,
   double merit = evaluate(v, r, true, error);
   res.initial_error = res.error = error;
   std::vector<Eigen::Triplet<double, int>> t;
-  for (int k = 0; k < max_iter && error > target; ++k) {
+  for (int k = 0; k < max_iter && error > target && clock.seconds() < max_seconds; ++k) {
     t.clear();
     for (Index j = 0; j < n; ++j)
       for (SparseMap::InnerIterator it(p.M, j); it; ++it) t.emplace_back(int(it.row()), int(j), it.value());
@@ -183,7 +185,8 @@ PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v,
 /// Polishes r of FC/II.
 template <int N, class Backend>
 PolishResult polish_local(const LocalProblemView& p, Vector& r, const Vector* frozen, double target,
-                          int max_iter) {
+                          int max_iter, double max_seconds) {
+  Stopwatch clock;
   const Index m = p.size(), nc = p.num_contacts();
   const double qs = p.q.norm() > 0 ? p.q.norm() : 1.0;
   std::vector<Mat<N>> A(static_cast<std::size_t>(nc)), B(static_cast<std::size_t>(nc));
@@ -200,7 +203,7 @@ PolishResult polish_local(const LocalProblemView& p, Vector& r, const Vector* fr
   double error = evaluate(r, true);
   res.initial_error = res.error = error;
   std::vector<Eigen::Triplet<double, int>> t;
-  for (int k = 0; k < max_iter && error > target; ++k) {
+  for (int k = 0; k < max_iter && error > target && clock.seconds() < max_seconds; ++k) {
     t.clear();
     // (A W)(a N + i, j) = sum_k A(i, k) W(a N + k, j)
     for (Index j = 0; j < m; ++j)

@@ -50,7 +50,6 @@ enum class RecoveryResult { NotApplicable, Ran, Stopped };
 
 template <class Form>
 class NonsmoothIpm : public IpmSolverBase<Form> {
-  using Base = IpmSolverBase<Form>;
   static constexpr int N = Form::dim;
 
  public:
@@ -97,7 +96,8 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     auto polish_best = [&] {
       if (!st.polish || best_error_ <= st.tol) return;
       Vector rr = best_r_, ww = best_w_;
-      const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol);
+      const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol,
+          st.max_time - clock.seconds());
       msg += "; " + this->describe_polish(pr);
       consider(rr, ww, pr.error);
     };

@@ -29,7 +29,6 @@ namespace ipm {
 
 template <class Form>
 class SocqpIpm : public IpmSolverBase<Form> {
-  using Base = IpmSolverBase<Form>;
 
  public:
   using Settings = IpmSettings;
@@ -72,7 +71,7 @@ class SocqpIpm : public IpmSolverBase<Form> {
     this->extract(it, r, w);
     double error = rep.error;
     if (error > st.tol && st.polish) {
-      PolishResult pr = this->polish(st, r, w, &s_, st.tol);
+      PolishResult pr = this->polish(st, r, w, &s_, st.tol, st.max_time - clock.seconds());
       info.message += "; " + this->describe_polish(pr);
       if (pr.error > st.tol && rep.exit == IpmExit::SlowProgress &&
           info.iterations < st.max_iter) {
@@ -89,7 +88,7 @@ class SocqpIpm : public IpmSolverBase<Form> {
         rep = more;
         Vector r2, w2;
         this->extract(it, r2, w2);
-        PolishResult pr2 = this->polish(st, r2, w2, &s_, st.tol);
+        PolishResult pr2 = this->polish(st, r2, w2, &s_, st.tol, st.max_time - clock.seconds());
         info.message += "; " + this->describe_polish(pr2);
         if (pr2.error < pr.error) {
           r = r2;
@@ -108,7 +107,6 @@ class SocqpIpm : public IpmSolverBase<Form> {
     return info;
   }
 
-  const Vector& frozen_s() const { return s_; }
   /// FCLIB error of the last solution for Coulomb's law (not what this
   /// solver minimises unless s = ||u_T||).
   double coulomb_error() const { return coulomb_error_; }
