@@ -231,19 +231,14 @@ SolveOptions parse_solve_options(Args& args, const std::string& default_solver) 
   o.solver = args.take("solver").value_or(default_solver);
   const registry::SolverEntry& entry = registry::find(o.solver);
   o.request = registry::make_request(entry);
-  if (auto v = args.take("tol")) {
-    o.request.common.tol = parse_double("tol", *v);
-    if (!(o.request.common.tol > 0)) throw UsageError("--tol must be positive");
-  }
-  if (auto v = args.take("max-iter")) {
-    const long long n = parse_int("max-iter", *v);
-    if (n < 1 || n > 1000000000) throw UsageError("--max-iter must be in [1, 1e9]");
-    o.request.common.max_iter = int(n);
-  }
-  if (auto v = args.take("max-time")) {
-    o.request.common.max_time = parse_double("max-time", *v);
-    if (!(o.request.common.max_time > 0)) throw UsageError("--max-time must be positive");
-  }
+  // Parsed here, checked by the registry (registry::detail::check_common),
+  // as for Python: both accept and reject the same requests.
+  long long max_iter = o.request.common.max_iter;
+  if (auto v = args.take("tol")) o.request.common.tol = parse_double("tol", *v);
+  if (auto v = args.take("max-iter")) max_iter = parse_int("max-iter", *v);
+  if (auto v = args.take("max-time")) o.request.common.max_time = parse_double("max-time", *v);
+  registry::detail::check_common(o.request.common.tol, max_iter, o.request.common.max_time);
+  o.request.common.max_iter = int(max_iter);
   if (auto v = args.take("out")) o.out = *v;
   if (auto v = args.take("warm-start")) o.warm_start = *v;
   if (o.warm_start != "none" && o.warm_start != "guess" && o.warm_start != "solution")

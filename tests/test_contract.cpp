@@ -208,8 +208,12 @@ TEST_CASE("every catalogue entry honours the solver contract", "[contract][catal
       nan.r0[0] = std::numeric_limits<double>::quiet_NaN();
       CHECK_THROWS_AS(run(c.problem, e, nan), InvalidProblem);
 
-      // a time budget of 0 and a tiny one: it returns, sizes and status honest
-      for (double budget : {0.0, 1e-5}) {
+      // a time budget of 0 is refused (the registry checks every request);
+      // tiny ones: it returns, sizes and status honest
+      registry::SolveRequest none = req;
+      none.common.max_time = 0;
+      CHECK_THROWS_AS(run(c.problem, e, none), UsageError);
+      for (double budget : {1e-9, 1e-5}) {
         INFO("max_time " << budget);
         registry::SolveRequest timed = req;
         timed.common.max_time = budget;

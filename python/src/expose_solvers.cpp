@@ -186,27 +186,30 @@ std::pair<const SolverEntry*, SettingValues> resolve_solver(py::handle solver, c
 
 fcsolve::SolverSettings common_settings(const SolverEntry& e, double tol, py::handle max_iter,
                                         py::handle max_time, bool history) {
+  // Types are checked here; values by the registry (check_common), as for the CLI.
   fcsolve::SolverSettings common;
-  if (!(tol > 0) || !std::isfinite(tol)) throw UsageError("tol must be a positive number, got " + std::to_string(tol));
-  common.tol = tol;
-  common.max_iter = e.default_max_iter;
+  long long iterations = e.default_max_iter;
   if (!max_iter.is_none()) {
     if (is_python_bool(max_iter) || !PyIndex_Check(max_iter.ptr()))
       throw py::type_error("max_iter must be an integer or None");
-    const long long n = max_iter.cast<long long>();
-    if (n < 1 || n > std::numeric_limits<int>::max())
-      throw UsageError("max_iter must be in [1, 2^31 - 1], got " + std::to_string(n));
-    common.max_iter = int(n);
+    int overflow = 0;
+    iterations = PyLong_AsLongLongAndOverflow(max_iter.ptr(), &overflow);
+    if (overflow) iterations = overflow > 0 ? std::numeric_limits<long long>::max()
+                                            : std::numeric_limits<long long>::min();
   }
+  double seconds = common.max_time;
   if (!max_time.is_none()) {
-    const double t = is_python_bool(max_time) ? -1.0 : PyFloat_AsDouble(max_time.ptr());
-    if (t == -1.0 && PyErr_Occurred()) {
+    if (is_python_bool(max_time)) throw py::type_error("max_time must be a number of seconds or None");
+    seconds = PyFloat_AsDouble(max_time.ptr());
+    if (seconds == -1.0 && PyErr_Occurred()) {
       PyErr_Clear();
       throw py::type_error("max_time must be a number of seconds or None");
     }
-    if (!(t > 0)) throw UsageError("max_time must be positive (seconds) or None");
-    common.max_time = t;
   }
+  fcsolve::registry::detail::check_common(tol, iterations, seconds);
+  common.tol = tol;
+  common.max_iter = int(iterations);
+  common.max_time = seconds;
   common.record_history = history;
   return common;
 }

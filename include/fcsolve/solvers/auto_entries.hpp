@@ -160,7 +160,8 @@ class StagedRun {
     const SolverEntry& entry = find(entry_name);
     SolveRequest req = make_request(entry);
     req.common.tol = tol();
-    req.common.max_time = max_time;
+    // A spent budget still asks for a valid (positive) limit: one iteration.
+    req.common.max_time = max_time > 0 ? max_time : 1e-9;
     req.common.max_iter = std::max(max_iter, 1);
     req.common.record_history = history || req_.common.record_history;
     if (req_.common.callback) {

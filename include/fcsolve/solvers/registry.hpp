@@ -19,6 +19,8 @@
 #include <fcsolve/problem/validate.hpp>
 #include <fcsolve/solvers/settings_schema.hpp>
 
+#include <cmath>
+#include <cstdio>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -145,6 +147,26 @@ inline void check_warm_start(const Vector& x, Index size, const char* name) {
   if (x.size() != 0 && !x.allFinite()) throw InvalidProblem(name, "warm start is not finite");
 }
 
+/// The common request, checked once for every front end (CLI, Python, C++):
+/// tol finite and > 0, max_iter in [1, kMaxIterations], max_time > 0
+/// (+inf: no limit). Front ends pass what they parsed, before narrowing.
+inline constexpr long long kMaxIterations = 1000000000;
+
+inline std::string shown(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+inline void check_common(double tol, long long max_iter, double max_time) {
+  if (!(tol > 0) || !std::isfinite(tol))
+    throw UsageError("tol must be a finite positive number, got " + shown(tol));
+  if (max_iter < 1 || max_iter > kMaxIterations)
+    throw UsageError("max_iter must be in [1, 1e9], got " + std::to_string(max_iter));
+  if (!(max_time > 0))
+    throw UsageError("max_time must be positive (seconds; inf: no limit), got " + shown(max_time));
+}
+
 /// A solver entry that returns a solution of the wrong size is a bug in
 /// that entry: say so instead of multiplying mismatched sizes.
 inline void check_returned(const Vector& x, Index size, const std::string& solver, const char* name) {
@@ -158,6 +180,7 @@ inline void check_returned(const Vector& x, Index size, const std::string& solve
 /// Solves FC/II with the named solver.
 inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
   Stopwatch clock;
+  detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
   validate(p);
   detail::check_warm_start(req.r0, p.size(), "r0");
   if (!e.solve_local) throw UsageError("solver '" + e.name + "' does not solve local problems");
@@ -188,6 +211,7 @@ inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const
 template <class Backend = DefaultBackend>
 SolveOutcome solve(const GlobalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
   Stopwatch clock;
+  detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
   validate(p);
   detail::check_warm_start(req.r0, p.size(), "r0");
   detail::check_warm_start(req.v0, p.num_dofs(), "v0");
