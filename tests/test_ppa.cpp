@@ -1,8 +1,9 @@
 // The proximal point method (ppa.hpp): closed-form one-contact cases
 // (take-off, stick, slide) with both inner solvers, 2D and frictionless
 // cones, every FCLIB local problem to 1e-8 (checked with the independent
-// error of core/error.hpp), a rank-deficient scene (one rigid box on eight
-// contacts: rank W = 6 of 24), warm start, budgets, callback, bad input,
+// error of core/error.hpp), rank-deficient scenes (one rigid box on eight
+// contacts: rank W = 6 of 24; a settled sphere pile, `fcsolve generate
+// sphere-pile`'s scene), warm start, budgets, callback, bad input,
 // the regularised subproblem itself and the catalogue entries.
 #include "test_support.hpp"
 
@@ -10,6 +11,8 @@
 #include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/ppa.hpp>
+#include <fcsolve/scenes/rigid_stepper.hpp>
+#include <fcsolve/scenes/sphere_pile.hpp>
 #include <fcsolve/solvers/catalog.hpp>
 
 #include <Eigen/Dense>
@@ -184,6 +187,34 @@ TEST_CASE("ppa: a rank-deficient W (one box on eight contacts)", "[ppa][rank-def
     CHECK(local_error(q, solve_with(nsgs, q)) <= 1e-8);
     CHECK(nsgs.info().converged());
   }
+}
+
+TEST_CASE("ppa: a settled sphere pile (rank-deficient W)", "[ppa][rank-deficient]") {
+  // the scene of `fcsolve generate sphere-pile` (cli/generate.cpp's step
+  // settings): stepped until ~1.5 contacts per sphere
+  scenes::SpherePileLayout layout;
+  layout.spheres = 60;
+  scenes::SpherePile pile(layout);
+  scenes::StepSettings s;
+  s.h = 5e-3;
+  s.law.beta = 0;  // --penetration-correction 0
+  s.law.slop = 0;
+  s.tol = 1e-4;
+  s.max_iter = 50;
+  scenes::RigidStepper<scenes::SpherePile> stepper(pile, s);
+  LocalProblem p;
+  for (int k = 0; k < 600 && p.num_contacts() < 90; ++k)
+    if (stepper.step().contacts >= 60) p = stepper.local();
+  REQUIRE(p.num_contacts() >= 60);
+  Eigen::FullPivLU<DenseMatrix> lu{DenseMatrix(p.W)};
+  lu.setThreshold(1e-10);
+  INFO("nc = " << p.num_contacts() << ", m = " << p.size() << ", rank W = " << lu.rank());
+  CHECK(lu.rank() < p.size());  // closed loops of contacts between spheres
+  ProximalPoint<Coulomb3D> ppa;
+  ppa.settings().max_time = 60;  // a guard; it takes well under a second
+  const Vector r = solve_with(ppa, p);
+  CHECK(ppa.info().converged());
+  CHECK(local_error(p, r) <= 1e-8);
 }
 
 TEST_CASE("ppa: warm start, budgets, callback and history", "[ppa][api]") {

@@ -44,8 +44,8 @@ class ProximalProblem {
       diagonal_position_[std::size_t(i)] = pos;
       diagonal_[i] = W_.valuePtr()[pos];
     }
-    const double mean = diagonal_.cwiseAbs().mean();
-    diagonal_scale_ = m > 0 && mean > 0 && std::isfinite(mean) ? mean : 1.0;
+    const double mean = m > 0 ? diagonal_.cwiseAbs().mean() : 0.0;
+    diagonal_scale_ = mean > 0 && std::isfinite(mean) ? mean : 1.0;
     q_ = p.q;
     source_.emplace(p);
     view_.emplace(p.d, detail::map_compressed(W_, "W"), detail::map_vector(q_), p.mu);
