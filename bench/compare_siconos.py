@@ -58,6 +58,8 @@ PAIRS = {
     # FC/I natively (global files only): fcsolve in (v, r) vs Siconos gfc3d NSN-AC
     "newton-global": [("nsn-ac-global", [], "gnsn-ac"), ("nsn-fb-global", [], "gnsn-ac")],
     # interior-point family on global problems (gfc3d_driver for Siconos)
+    # proximal point: inner Newton (as Siconos' PROX) or inner NSGS, both against PROX
+    "ppa": [("ppa", [], "prox"), ("ppa-nsgs", [], "prox")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }

@@ -42,6 +42,9 @@ static_assert(satisfies_solver_contract_v<GlobalNewton<NaturalMapFunction, Coulo
                                           GlobalProblemView>);
 static_assert(satisfies_solver_contract_v<ProjectedFixedPoint<Coulomb3D, SparseStorage<3>>,
                                           LocalProblemView>);
+static_assert(satisfies_solver_contract_v<ProximalPoint<Coulomb3D>, LocalProblemView>);
+static_assert(satisfies_solver_contract_v<
+              ProximalPoint<Coulomb2D, Nsgs<Coulomb2D, BlockSparseStorage<2>>>, LocalProblemView>);
 // Not a solver: the contract is not vacuous.
 static_assert(!satisfies_solver_contract_v<LocalProblem, LocalProblemView>);
 static_assert(!satisfies_solver_contract_v<Newton<AlartCurnierFunction, Coulomb3D, SparseStorage<3>>,

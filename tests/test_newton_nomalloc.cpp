@@ -1,4 +1,5 @@
-// Proves that the Newton iterations allocate nothing outside the
+// Proves that the Newton iterations (also inside the proximal point
+// method, ppa.hpp) allocate nothing outside the
 // factorisation of the Newton matrix: this file is compiled with
 // EIGEN_RUNTIME_NO_MALLOC and an eigen_assert that throws, so any Eigen heap
 // allocation between FCSOLVE_NO_MALLOC_BEGIN/END (Jacobian assembly, line
@@ -14,6 +15,7 @@
 #include "test_support.hpp"
 
 #include <fcsolve/newton.hpp>
+#include <fcsolve/ppa.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -58,4 +60,18 @@ TEST_CASE("Newton iterations allocate nothing outside the factorisation", "[newt
     CHECK_NOTHROW(nsn.solve(r, v));
     CHECK(nsn.info().converged());
   }
+}
+
+TEST_CASE("ppa: the outer updates and the inner Newton iterations allocate nothing",
+          "[ppa][nomalloc]") {
+  // the inner solver's compute() (once per subproblem) may allocate; the
+  // outer updates (alpha, shifted q, error, step) and the inner iterations
+  // run between FCSOLVE_NO_MALLOC_BEGIN/END
+  const LocalProblem boxes = fclib::read_local(fcsolve_test::bundled("BoxesStack1-i100000-32.hdf5"));
+  ProximalPoint<Coulomb3D> ppa;
+  ppa.compute(boxes);
+  Vector r = Vector::Zero(boxes.size()), u(boxes.size());
+  CHECK_NOTHROW(ppa.solve(r, u));
+  CHECK(ppa.info().converged());
+  CHECK(ppa.info().iterations > 1);
 }

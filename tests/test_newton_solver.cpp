@@ -23,15 +23,7 @@ using namespace fcsolve;
 
 namespace {
 
-LocalProblem make_local(int d, const DenseMatrix& W, const Vector& q, const Vector& mu) {
-  LocalProblem p;
-  p.d = d;
-  p.W = W.sparseView();
-  p.W.makeCompressed();
-  p.q = q;
-  p.mu = mu;
-  return p;
-}
+using fcsolve_test::make_local;
 
 template <template <class> class F, class Cone, class Storage = DenseStorage<Cone::dim>,
           class Linear = DefaultNewtonLinearSolver<Storage>>

@@ -67,6 +67,18 @@ inline std::string scratch(const std::string& name) {
   return std::string(paths::scratch_dir) + "/scratch_" + name;
 }
 
+/// FC/II from dense data (W stored compressed), for closed-form cases.
+inline fcsolve::LocalProblem make_local(int d, const fcsolve::DenseMatrix& W,
+                                        const fcsolve::Vector& q, const fcsolve::Vector& mu) {
+  fcsolve::LocalProblem p;
+  p.d = d;
+  p.W = W.sparseView();
+  p.W.makeCompressed();
+  p.q = q;
+  p.mu = mu;
+  return p;
+}
+
 /// The solver contract's typed errors (docs/architecture.md) for a solver
 /// not computed yet: solve() before compute() is a UsageError; mu < 0 in
 /// p, a warm start of the wrong size or with a NaN are InvalidProblem.

@@ -75,9 +75,7 @@ class Nsgs {
   /// Throws InvalidProblem on inconsistent data.
   Nsgs& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    if (p.d != d)
-      throw InvalidProblem("spacedim", "this solver is compiled for d = " + std::to_string(d) +
-                                           ", the problem has d = " + std::to_string(p.d));
+    validate_dimension(p.d, d);
     validate(p);
     problem_.emplace(p);
     storage_.compute(p.W);

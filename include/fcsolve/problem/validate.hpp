@@ -118,6 +118,14 @@ inline void validate(const GlobalProblemView& p) {
   }
 }
 
+/// A solver compiled for contacts of dimension `solver_d` refuses a problem
+/// of another dimension (InvalidProblem on "spacedim").
+inline void validate_dimension(int problem_d, int solver_d) {
+  if (problem_d != solver_d)
+    throw InvalidProblem("spacedim", "this solver is compiled for d = " + std::to_string(solver_d) +
+                                         ", the problem has d = " + std::to_string(problem_d));
+}
+
 inline void validate(const LocalProblem& p) { validate(LocalProblemView(p)); }
 inline void validate(const GlobalProblem& p) { validate(GlobalProblemView(p)); }
 

@@ -9,6 +9,7 @@
 #include <fcsolve/solvers/registry.hpp>
 #include <fcsolve/solvers/ipm_entries.hpp>
 #include <fcsolve/solvers/newton_entries.hpp>
+#include <fcsolve/solvers/ppa_entries.hpp>
 #include <fcsolve/solvers/vi_entries.hpp>
 
 namespace fcsolve {
@@ -22,6 +23,7 @@ inline const std::vector<SolverEntry>& entries() {
     add_vi_solvers(v);
     add_newton_solvers(v);
     add_ipm_solvers(v);
+    add_ppa_solvers(v);
     // `auto` runs the entries above by name (solvers/auto_entries.hpp).
     add_auto_solvers(v);
     return v;

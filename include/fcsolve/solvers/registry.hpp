@@ -117,6 +117,18 @@ inline Vector initial_reactions(const SolveRequest& req, Index size) {
   return req.r0.size() ? req.r0 : Vector(Vector::Zero(size));
 }
 
+/// Runs a local solver of the contract (core/solver_contract.hpp), its
+/// settings already set: compute(p), then solve from the request's warm start.
+template <class Solver>
+SolveOutcome compute_and_solve(Solver& solver, const LocalProblemView& p, const SolveRequest& req) {
+  solver.compute(p);
+  SolveOutcome out;
+  out.r = initial_reactions(req, p.size());
+  out.u.resize(p.size());
+  out.info = solver.solve(out.r, out.u);
+  return out;
+}
+
 /// A request with the entry's default settings.
 inline SolveRequest make_request(const SolverEntry& e) {
   SolveRequest req;

@@ -25,12 +25,7 @@ SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
   s.ratio_max = req.settings.real("ratio_max");
   s.ratio_min = req.settings.real("ratio_min");
   Solver solver(s);
-  solver.compute(p);
-  SolveOutcome out;
-  out.r = initial_reactions(req, p.size());
-  out.u.resize(p.size());
-  out.info = solver.solve(out.r, out.u);
-  return out;
+  return compute_and_solve(solver, p, req);
 }
 
 inline LocalSolveFunction projected_solver(ProjectionVariant variant) {

@@ -52,9 +52,7 @@ class ProjectedFixedPoint {
   /// step. The viewed data must outlive *this.
   ProjectedFixedPoint& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    if (p.d != d)
-      throw InvalidProblem("spacedim", "this solver is compiled for d = " + std::to_string(d) +
-                                           ", the problem has d = " + std::to_string(p.d));
+    validate_dimension(p.d, d);
     validate(p);
     problem_.emplace(p);
     W_.compute(p.W);
