@@ -24,7 +24,7 @@ import tempfile
 import time
 
 TOLERANCES = (1e-4, 1e-6, 1e-8)
-LOCAL_FORM = {"nsgs", "nsn-ac", "aclm-newton"}  # solve FC/II: reduce first
+LOCAL_FORM = {"nsgs", "nsn-ac"}  # solve FC/II: an FC/I file is reduced first
 FIELDS = ["scene", "nc", "n", "solver", "tol", "max_time", "status", "converged", "iterations",
           "error", "wall_seconds", "setup_seconds", "solve_seconds", "peak_rss_mb", "overrun",
           "file", "message"]
