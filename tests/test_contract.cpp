@@ -242,7 +242,8 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
   round_trip(std::vector<RhoStrategy>{RhoStrategy::Constant, RhoStrategy::SpectralNorm,
                                       RhoStrategy::SplitSpectralNorm, RhoStrategy::Adaptive});
   round_trip(std::vector<ContactOrdering>{ContactOrdering::Natural, ContactOrdering::ShuffledOnce,
-                                          ContactOrdering::ShuffledEachSweep});
+                                          ContactOrdering::ShuffledEachSweep,
+                                          ContactOrdering::Coloured});
   // the catalogue offers exactly the enum's names, its default among them
   const registry::SolverEntry& e = registry::find("nsn-ac");
   registry::SolveRequest req = registry::make_request(e);

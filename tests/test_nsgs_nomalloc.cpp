@@ -26,6 +26,7 @@ void solve_without_allocation(const LocalProblem& p, ContactOrdering ordering, d
   nsgs.settings().ordering = ordering;
   nsgs.settings().omega = omega;
   nsgs.settings().freezing = 5;
+  nsgs.settings().threads = 2;  // used by the coloured ordering only
   nsgs.compute(p);
   Vector r = Vector::Zero(p.size()), u(p.size());
   REQUIRE_NOTHROW(nsgs.solve(r, u));
@@ -48,7 +49,8 @@ TEST_CASE("nsgs sweeps do not allocate", "[nsgs][nomalloc]") {
   using E = local::Enumerative<Coulomb3D>;
   using P = local::Projection<Coulomb3D>;
   using PI = local::ProjectionIterative<Coulomb3D>;
-  for (auto o : {ContactOrdering::Natural, ContactOrdering::ShuffledEachSweep}) {
+  for (auto o : {ContactOrdering::Natural, ContactOrdering::ShuffledEachSweep,
+                 ContactOrdering::Coloured}) {
     solve_without_allocation<BlockSparseStorage<3>, E>(p, o, 1.0);
     solve_without_allocation<SparseStorage<3>, E>(p, o, 0.9);
     solve_without_allocation<DenseStorage<3>, E>(small, o, 1.1);

@@ -35,21 +35,27 @@ inline bool have_shared_data() {
   return std::filesystem::is_directory(std::filesystem::path(shared_data_dir()) / "local");
 }
 
+/// The bundled examples/data files of kind `sub` ("local" or "global"), sorted.
+inline std::vector<std::string> bundled_files(const std::string& sub) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> out;
+  const auto kind = sub == "local" ? fcsolve::fclib::Kind::Local : fcsolve::fclib::Kind::Global;
+  for (const auto& e : fs::directory_iterator(paths::bundled_data))
+    if (e.path().extension() == ".hdf5" && fcsolve::fclib::detect_kind(e.path().string()) == kind)
+      out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 /// Every .hdf5 file under `sub` ("local" or "global") of the shared
 /// collection, or the bundled examples/data files of that kind when the
 /// collection is absent (a fresh clone without ../shared).
 inline std::vector<std::string> fclib_files(const std::string& sub) {
   namespace fs = std::filesystem;
+  if (!have_shared_data()) return bundled_files(sub);
   std::vector<std::string> out;
-  if (have_shared_data()) {
-    for (const auto& e : fs::directory_iterator(fs::path(shared_data_dir()) / sub))
-      if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
-  } else {
-    const auto kind = sub == "local" ? fcsolve::fclib::Kind::Local : fcsolve::fclib::Kind::Global;
-    for (const auto& e : fs::directory_iterator(paths::bundled_data))
-      if (e.path().extension() == ".hdf5" && fcsolve::fclib::detect_kind(e.path().string()) == kind)
-        out.push_back(e.path().string());
-  }
+  for (const auto& e : fs::directory_iterator(fs::path(shared_data_dir()) / sub))
+    if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;
 }

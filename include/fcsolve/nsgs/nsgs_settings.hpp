@@ -12,13 +12,18 @@ namespace fcsolve {
 enum class ContactOrdering {
   Natural,          ///< 0, 1, ..., nc - 1
   ShuffledOnce,     ///< one random permutation (seeded), kept for the whole solve
-  ShuffledEachSweep ///< a new random permutation every sweep
+  ShuffledEachSweep, ///< a new random permutation every sweep
+  /// Colour by colour (nsgs/contact_colouring.hpp): contacts of one colour
+  /// share no body (no block W^{ab}), so they are updated in parallel with
+  /// `threads` OpenMP threads, with the same iterates for any thread count.
+  Coloured
 };
 
 inline constexpr EnumName<ContactOrdering> kContactOrderingNames[] = {
     {ContactOrdering::Natural, "natural"},
     {ContactOrdering::ShuffledOnce, "shuffle"},
-    {ContactOrdering::ShuffledEachSweep, "reshuffle"}};
+    {ContactOrdering::ShuffledEachSweep, "reshuffle"},
+    {ContactOrdering::Coloured, "coloured"}};
 constexpr const auto& enum_names(ContactOrdering) { return kContactOrderingNames; }
 inline const char* to_string(ContactOrdering o) { return enum_to_string(o); }
 
@@ -32,9 +37,14 @@ struct NsgsSettings : SolverSettings {
   double omega = 1.0;
   ContactOrdering ordering = ContactOrdering::Natural;
   std::uint32_t seed = 0;  ///< seed of the shuffles
+  /// Threads of the Coloured sweep (>= 1). Ignored by the other orderings
+  /// and when the library is compiled without OpenMP (serial loop, same
+  /// iterates).
+  int threads = 1;
   /// When the best full error has not improved by 1% for this many sweeps,
   /// switch to ShuffledEachSweep: exact block Gauss-Seidel in a fixed order
-  /// can fall into a cycle that a new order each sweep breaks. 0: never.
+  /// can fall into a cycle that a new order each sweep breaks (Coloured:
+  /// the order of the colours is reshuffled instead). 0: never.
   int stall_sweeps = 5000;
   /// Full FCLIB error at least every `error_every` sweeps; in between, a
   /// cheap test on ||r_{k+1} - r_k|| decides whether a full error is worth

@@ -12,6 +12,15 @@
 // u = W r + q up to date with column updates u += W^{.a} (r^a_new - r^a).
 // The sweep allocates nothing (proved by the EIGEN_RUNTIME_NO_MALLOC test).
 //
+// ContactOrdering::Coloured visits the contacts colour by colour
+// (nsgs/contact_colouring.hpp) and updates the contacts of one colour with
+// an OpenMP `parallel for` (static schedule, settings().threads threads).
+// They read only reactions of other colours, and every sum over contacts is
+// taken serially in a fixed order after the loop, so the iterates do not
+// depend on the number of threads. Without OpenMP the same loop runs
+// serially. Column-update storage adds the colour's columns to u after the
+// parallel loop (two contacts of a colour may touch the same rows of u).
+//
 // Success is declared only on the full FCLIB error (core/error.hpp) of the
 // returned r: error = ||F_nat(r)|| / ||q|| <= tol. When the solve fails
 // (iteration or time budget, callback, NaN) r is the iterate with the
@@ -24,6 +33,7 @@
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/local/enumerative.hpp>
 #include <fcsolve/local/one_contact.hpp>
+#include <fcsolve/nsgs/contact_colouring.hpp>
 #include <fcsolve/nsgs/nsgs_settings.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/validate.hpp>
@@ -35,9 +45,16 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace fcsolve {
+namespace detail {
+template <class S>
+struct is_dense_storage : std::false_type {};
+template <int D, class Scalar>
+struct is_dense_storage<DenseStorage<D, Scalar>> : std::true_type {};
+}  // namespace detail
 
 /// The default local solver is the exact one (local/enumerative.hpp, fast
 /// mode: closed-form take-off and stick, Newton on the sliding direction):
@@ -69,6 +86,13 @@ class Nsgs {
   const Settings& settings() const { return settings_; }
   const SolverInfo& info() const { return info_; }
   const Storage& storage() const { return storage_; }
+  /// The colouring of the Coloured ordering (computed by compute() when
+  /// that ordering is set, else by the first solve() that uses it).
+  const ContactColouring& colouring() {
+    if (!problem_) throw UsageError("Nsgs::colouring() called before compute()");
+    prepare_colouring();
+    return *colouring_;
+  }
 
   /// Stores W in the storage policy and caches each diagonal block with the
   /// local solver's per-contact data. The viewed data must outlive *this.
@@ -85,6 +109,8 @@ class Nsgs {
       data_[a] = LocalSolver::prepare(storage_.diagonal_block(a), p.mu[a], settings_.local);
     order_.resize(static_cast<std::size_t>(nc));
     frozen_.assign(static_cast<std::size_t>(nc), 0);
+    colouring_.reset();
+    if (settings_.ordering == ContactOrdering::Coloured) prepare_colouring();
     u_.resize(m);
     work_.resize(m);
     best_.resize(m);
@@ -107,10 +133,15 @@ class Nsgs {
 
     ContactOrdering ordering = s.ordering;
     std::iota(order_.begin(), order_.end(), Index(0));
-    if (ordering != ContactOrdering::Natural) {
+    if (ordering == ContactOrdering::Coloured) {
+      prepare_colouring();
+      std::iota(colour_order_.begin(), colour_order_.end(), Index(0));
+      start_threads();
+    } else if (ordering != ContactOrdering::Natural) {
       rng_.seed(s.seed);
       std::shuffle(order_.begin(), order_.end(), rng_);
     }
+    bool reshuffle = ordering == ContactOrdering::ShuffledEachSweep;
     std::fill(frozen_.begin(), frozen_.end(), 0);
     local_failures_ = 0;
 
@@ -127,9 +158,11 @@ class Nsgs {
     Status status = Status::MaxIterations;
     for (int sweep_no = 1; sweep_no <= s.max_iter; ++sweep_no) {
       FCSOLVE_NO_MALLOC_BEGIN();
-      if (ordering == ContactOrdering::ShuffledEachSweep)
+      if (reshuffle && ordering == ContactOrdering::Coloured)
+        std::shuffle(colour_order_.begin(), colour_order_.end(), rng_);
+      else if (reshuffle)
         std::shuffle(order_.begin(), order_.end(), rng_);
-      const SweepResult sw = sweep(r);
+      const SweepResult sw = ordering == ContactOrdering::Coloured ? coloured_sweep(r) : sweep(r);
       const double change = std::sqrt(sw.change2 / std::max(r.squaredNorm(), 1e-300));
       const bool last = sweep_no == s.max_iter;
       const bool full = sweep_no % every == 0 || change * ratio <= s.tol || last ||
@@ -158,12 +191,14 @@ class Nsgs {
           progress_error = error;
           progress_sweep = sweep_no;
         } else if (s.stall_sweeps > 0 && sweep_no - progress_sweep >= s.stall_sweeps &&
-                   ordering != ContactOrdering::ShuffledEachSweep) {
-          if (ordering == ContactOrdering::Natural) rng_.seed(s.seed);
-          ordering = ContactOrdering::ShuffledEachSweep;
+                   !reshuffle) {
+          if (ordering == ContactOrdering::Natural || ordering == ContactOrdering::Coloured)
+            rng_.seed(s.seed);
+          reshuffle = true;
           progress_sweep = sweep_no;
-          note("no progress: contacts reshuffled every sweep from sweep " +
-               std::to_string(sweep_no));
+          note(std::string("no progress: ") +
+               (ordering == ContactOrdering::Coloured ? "colours" : "contacts") +
+               " reshuffled every sweep from sweep " + std::to_string(sweep_no));
         }
         if (sw.skipped > 0 && change * ratio <= s.tol) {
           // converged on the visited contacts only: check the frozen ones
@@ -200,46 +235,124 @@ class Nsgs {
     Index skipped = 0;   ///< frozen contacts not visited
   };
 
-  SweepResult sweep(Eigen::Ref<Vector> r) {
+  /// One contact's update: its local solve from the current r (or u_).
+  struct ContactUpdate {
+    Vec dr = Vec::Zero();  ///< r^a_new - r^a_old (zero when skipped or failed)
+    double dr2 = 0;        ///< ||dr||^2
+    int failures = 0;      ///< local solves that did not converge or gave non-finite values
+    bool skipped = false;  ///< frozen: not visited
+  };
+
+  /// Solves contact a's one-contact problem with the latest reactions and
+  /// writes r^a; reads r (row access) or u_^a, writes only r^a and
+  /// frozen_[a], so contacts that share no block can run at the same time.
+  ContactUpdate update_contact(Index a, Eigen::Ref<Vector> r) {
     [[maybe_unused]] const LocalProblemView& p = *problem_;
     const Settings& s = settings_;
-    SweepResult out;
-    for (const Index a : order_) {
-      if (s.freezing > 0 && frozen_[a] > 0) {
-        --frozen_[a];
-        ++out.skipped;
-        continue;
-      }
-      auto ra = r.template segment<d>(a * d);
-      const Vec r_old = ra;
-      const Mat& Waa = storage_.diagonal_block(a);
-      Vec qhat;
-      if constexpr (Storage::row_access) {
-        qhat = p.q.template segment<d>(a * d) + storage_.block_row_product(a, r);
-      } else {
-        qhat = u_.template segment<d>(a * d);
-      }
-      qhat.noalias() -= Waa * r_old;
-      Vec r_new = r_old;
-      const local::LocalResult lr = LocalSolver::solve(data_[a], qhat, r_new, s.local);
-      if (!lr.converged) ++local_failures_;
-      if (!r_new.allFinite()) {  // keep the old value, count it as a failure
-        ++local_failures_;
-        continue;
-      }
-      if (s.omega != 1.0) r_new = s.omega * r_new + (1 - s.omega) * r_old;
-      const Vec dr = r_new - r_old;
-      ra = r_new;
-      const double dr2 = dr.squaredNorm();
-      out.change2 += dr2;
-      if constexpr (!Storage::row_access) {
-        if (dr2 > 0) storage_.add_block_column(a, dr, u_);
-      }
-      if (s.freezing > 0 &&
-          dr2 <= s.freeze_tol * s.freeze_tol * std::max(r_new.squaredNorm(), 1e-300))
-        frozen_[a] = s.freezing;
+    ContactUpdate out;
+    if (s.freezing > 0 && frozen_[a] > 0) {
+      --frozen_[a];
+      out.skipped = true;
+      return out;
     }
+    auto ra = r.template segment<d>(a * d);
+    const Vec r_old = ra;
+    const Mat& Waa = storage_.diagonal_block(a);
+    Vec qhat;
+    if constexpr (Storage::row_access) {
+      qhat = p.q.template segment<d>(a * d) + storage_.block_row_product(a, r);
+    } else {
+      qhat = u_.template segment<d>(a * d);
+    }
+    qhat.noalias() -= Waa * r_old;
+    Vec r_new = r_old;
+    const local::LocalResult lr = LocalSolver::solve(data_[a], qhat, r_new, s.local);
+    if (!lr.converged) ++out.failures;
+    if (!r_new.allFinite()) {  // keep the old value, count it as a failure
+      ++out.failures;
+      return out;
+    }
+    if (s.omega != 1.0) r_new = s.omega * r_new + (1 - s.omega) * r_old;
+    out.dr = r_new - r_old;
+    ra = r_new;
+    out.dr2 = out.dr.squaredNorm();
+    if (s.freezing > 0 &&
+        out.dr2 <= s.freeze_tol * s.freeze_tol * std::max(r_new.squaredNorm(), 1e-300))
+      frozen_[a] = s.freezing;
     return out;
+  }
+
+  /// Adds contact a's update to the sweep's sums and, for column-update
+  /// storage, to u_.
+  void record(Index a, const ContactUpdate& c, SweepResult& out) {
+    local_failures_ += c.failures;
+    if (c.skipped) ++out.skipped;
+    out.change2 += c.dr2;
+    if constexpr (!Storage::row_access) {
+      if (c.dr2 > 0) storage_.add_block_column(a, c.dr, u_);
+    }
+  }
+
+  SweepResult sweep(Eigen::Ref<Vector> r) {
+    SweepResult out;
+    for (const Index a : order_) record(a, update_contact(a, r), out);
+    return out;
+  }
+
+  /// Colour by colour; the contacts of a colour in parallel, in one
+  /// parallel region per sweep (a barrier per colour). Their updates are
+  /// kept in updates_ and recorded serially in the colour order, so the sums
+  /// (and u_) do not depend on the number of threads: after the sweep with
+  /// row access, after each colour with column updates (the next colour
+  /// reads u_).
+  SweepResult coloured_sweep(Eigen::Ref<Vector> r) {
+    const ContactColouring& colouring = *colouring_;
+    // Dense storage reads every r^b in a row product, zero blocks included:
+    // contacts of one colour would then race; it is for a few contacts only.
+    [[maybe_unused]] const int threads = is_dense_storage ? 1 : settings_.threads;
+    SweepResult out;
+    const auto record_colour = [&](Index c) {
+      for (Index i = colouring.start[c]; i < colouring.start[c + 1]; ++i)
+        record(colouring.contacts[i], updates_[i], out);
+    };
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads) if (threads > 1)
+#endif
+    for (const Index c : colour_order_) {
+      const Index begin = colouring.start[c], end = colouring.start[c + 1];
+#ifdef _OPENMP
+#pragma omp for schedule(static)
+#endif
+      for (Index i = begin; i < end; ++i) updates_[i] = update_contact(colouring.contacts[i], r);
+      if constexpr (!Storage::row_access) {
+#ifdef _OPENMP
+#pragma omp single
+#endif
+        record_colour(c);
+      }
+    }
+    if constexpr (Storage::row_access)
+      for (const Index c : colour_order_) record_colour(c);
+    return out;
+  }
+
+  void prepare_colouring() {
+    if (colouring_) return;
+    colouring_ = colour_contacts(problem_->W, d);
+    colour_order_.resize(static_cast<std::size_t>(colouring_->num_colours()));
+    updates_.resize(colouring_->contacts.size());
+  }
+
+  /// Starts the OpenMP thread team before the sweeps: the runtime allocates
+  /// it at the first parallel region with a given number of threads, and
+  /// reuses it afterwards.
+  void start_threads() const {
+#ifdef _OPENMP
+    const int threads = settings_.threads;
+#pragma omp parallel num_threads(threads) if (threads > 1 && !is_dense_storage)
+    {
+    }
+#endif
   }
 
   /// FCLIB error of r; refreshes u_ (and removes the drift of the column
@@ -281,6 +394,8 @@ class Nsgs {
       throw InvalidProblem("u", "expected " + std::to_string(m) + " entries, got " +
                                     std::to_string(u.size()));
     if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    if (settings_.threads < 1)
+      throw UsageError("NSGS: threads must be >= 1, got " + std::to_string(settings_.threads));
     if (!(settings_.omega > 0 && settings_.omega < 2))
       throw UsageError("NSGS: omega must be in (0, 2), got " + std::to_string(settings_.omega));
   }
@@ -292,6 +407,10 @@ class Nsgs {
   std::vector<typename LocalSolver::Data, Eigen::aligned_allocator<typename LocalSolver::Data>> data_;
   std::vector<Index> order_;
   std::vector<int> frozen_;
+  static constexpr bool is_dense_storage = detail::is_dense_storage<Storage>::value;
+  std::optional<ContactColouring> colouring_;
+  std::vector<Index> colour_order_;  // the colours in the order of the sweep
+  std::vector<ContactUpdate, Eigen::aligned_allocator<ContactUpdate>> updates_;  // by colour slot
   std::minstd_rand rng_;  // small state: cheap to construct and seed
   Vector u_, work_, best_;
   double scale_ = 1, best_error_ = 0;

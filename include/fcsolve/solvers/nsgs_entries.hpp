@@ -1,6 +1,6 @@
 // Catalogue entries of the NSGS / PSOR family (solvers/registry.hpp): one
 // entry per local solver, all with the NSGS knobs (omega, ordering, seed,
-// error_every, freezing) plus the local solver's own.
+// threads, error_every, freezing) plus the local solver's own.
 //
 // The storage is chosen at run time (solvers/dispatch.hpp): DenseStorage up
 // to kDenseStorageMaxContacts contacts, BlockSparseStorage beyond; the cone
@@ -31,9 +31,13 @@ inline std::vector<SettingSpec> common_settings(double omega) {
       real_setting("omega", omega, "over-relaxation r <- omega r_local + (1 - omega) r, in (0, 2)",
                    1e-6, 2 - 1e-6),
       enum_setting("ordering", d.ordering,
-                   "contact order: natural, shuffled once, reshuffled every sweep"),
+                   "contact order: natural, shuffled once, reshuffled every sweep, or colour "
+                   "by colour (contacts of a colour in parallel)"),
       boolean_setting("shuffle", false, "same as --ordering shuffle"),
       integer_setting("seed", d.seed, "seed of the contact shuffles", 0, 4294967295.0),
+      integer_setting("threads", d.threads,
+                      "OpenMP threads of --ordering coloured (same iterates for any number)", 1,
+                      1024),
       integer_setting("stall_sweeps", d.stall_sweeps,
                       "reshuffle every sweep after this many sweeps without 1% progress (0: never)",
                       0, 1e9),
@@ -53,6 +57,7 @@ void apply_common(const SolveRequest& req, Settings& s) {
   if (s.ordering == ContactOrdering::Natural && v.boolean("shuffle"))
     s.ordering = ContactOrdering::ShuffledOnce;
   s.seed = static_cast<std::uint32_t>(v.integer("seed"));
+  s.threads = static_cast<int>(v.integer("threads"));
   s.stall_sweeps = static_cast<int>(v.integer("stall_sweeps"));
   s.error_every = static_cast<int>(v.integer("error_every"));
   s.freezing = static_cast<int>(v.integer("freezing"));
