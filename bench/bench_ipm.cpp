@@ -52,7 +52,7 @@ void run_solver(benchmark::State& state, const std::shared_ptr<GlobalProblem>& g
     Stopwatch clock;
     Solver solver(settings);
     solver.compute(*g);
-    Vector r, v;
+    Vector r = Vector::Zero(g->size()), v(g->num_dofs());
     info = solver.solve(r, v);
     seconds = clock.seconds();
     stats = solver.statistics();
@@ -66,12 +66,12 @@ void run_solver(benchmark::State& state, const std::shared_ptr<GlobalProblem>& g
 }
 
 /// Dense Newton matrices for tiny scenes, as the catalogue chooses.
-template <template <int, class> class Alias, class Settings>
+template <template <class, class> class Alias, class Settings>
 void run_sized(benchmark::State& state, const std::shared_ptr<GlobalProblem>& g, const Settings& s) {
   if (g->num_dofs() + g->size() <= 96)
-    run_solver<Alias<3, DenseKktFactorization>>(state, g, s);
+    run_solver<Alias<Coulomb3D, DenseKktFactorization>>(state, g, s);
   else
-    run_solver<Alias<3, SparseKktFactorization<DefaultBackend>>>(state, g, s);
+    run_solver<Alias<Coulomb3D, SparseKktFactorization<DefaultBackend>>>(state, g, s);
 }
 
 const bool registered = [] {

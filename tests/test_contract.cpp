@@ -49,11 +49,10 @@ static_assert(satisfies_solver_contract_v<
 static_assert(!satisfies_solver_contract_v<LocalProblem, LocalProblemView>);
 static_assert(!satisfies_solver_contract_v<Newton<AlartCurnierFunction, Coulomb3D, SparseStorage<3>>,
                                            GlobalProblemView>);
-// The interior-point family does not follow it yet (solve(Vector&, Vector&)
-// returns SolverInfo by value and ignores r as a warm start; issue 11, item
-// 2): when it does, turn these around and update docs/architecture.md.
-static_assert(!satisfies_solver_contract_v<ipm::LocalSocqpIpm<3>, LocalProblemView>);
-static_assert(!satisfies_solver_contract_v<ipm::GlobalNipm<3>, GlobalProblemView>);
+static_assert(satisfies_solver_contract_v<ipm::LocalSocqpIpm<Coulomb3D>, LocalProblemView>);
+static_assert(satisfies_solver_contract_v<ipm::LocalAclm<Coulomb2D>, LocalProblemView>);
+static_assert(satisfies_solver_contract_v<ipm::GlobalNipm<Coulomb3D>, GlobalProblemView>);
+static_assert(!satisfies_solver_contract_v<ipm::GlobalNipm<Coulomb3D>, LocalProblemView>);
 
 namespace {
 

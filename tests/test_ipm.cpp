@@ -12,6 +12,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <limits>
+
 #include <random>
 
 using namespace fcsolve;
@@ -105,18 +107,18 @@ TEST_CASE("Convex SOCQP IPM: r* = P_K(-q - A s) when W = I", "[ipm][socqp]") {
         const GlobalProblem g = unit_global(mu, q);  // solvers view the data: keep it alive
         const LocalProblem p = unit_local(mu, q);
         {
-          GlobalSocqpIpm<3, DenseKktFactorization> ipm(st);
+          GlobalSocqpIpm<Coulomb3D, DenseKktFactorization> ipm(st);
           ipm.compute(g).set_frozen_s(s);
-          Vector r, v;
+          Vector r = Vector::Zero(3), v(3);
           const SolverInfo info = ipm.solve(r, v);
           CHECK(info.converged());
           CHECK(info.error <= 1e-12);
           CHECK((r - expected).norm() <= 1e-10 * (1 + q.norm()));
         }
         {
-          LocalSocqpIpm<3, SparseKkt> ipm(st);
+          LocalSocqpIpm<Coulomb3D, SparseKkt> ipm(st);
           ipm.compute(p).set_frozen_s(s);
-          Vector r, u;
+          Vector r = Vector::Zero(3), u(3);
           const SolverInfo info = ipm.solve(r, u);
           CHECK(info.converged());
           CHECK((r - expected).norm() <= 1e-10 * (1 + q.norm()));
@@ -133,9 +135,9 @@ TEST_CASE("Convex SOCQP IPM reaches 1e-12 on every global problem", "[ipm][socqp
     const auto g = std::get<GlobalProblem>(fclib::read_problem(path));
     IpmSettings st;
     st.tol = 1e-12;
-    GlobalSocqpIpm<3> ipm(st);
+    GlobalSocqpIpm<Coulomb3D> ipm(st);
     ipm.compute(g);
-    Vector r, v;
+    Vector r = Vector::Zero(g.size()), v(g.num_dofs());
     const SolverInfo info = ipm.solve(r, v);
     CHECK(info.converged());
     CHECK(info.error <= 1e-12);
@@ -169,13 +171,18 @@ TEST_CASE("NIPM and ACLM find the closed-form one-contact solutions", "[ipm][nip
       CHECK(out.info.converged());
       CHECK((out.r - c.r).norm() <= 1e-8);
     }
-    LocalNipm<3, DenseKktFactorization> nipm;
+    LocalNipm<Coulomb3D, DenseKktFactorization> nipm;
     nipm.settings().tol = 1e-10;
     const LocalProblem p = unit_local(0.5, c.q);
     nipm.compute(p);
-    Vector r, u;
+    Vector r = Vector::Zero(3), u(3);
     CHECK(nipm.solve(r, u).converged());
     CHECK((r - c.r).norm() <= 1e-8);
+    // restarted from its solution it returns it with no iteration
+    const Vector solution = r;
+    CHECK(nipm.solve(r, u).converged());
+    CHECK(nipm.info().iterations == 0);
+    CHECK(r == solution);
   }
 }
 
@@ -399,17 +406,17 @@ TEST_CASE("Reported convergence always means FCLIB error <= tol", "[ipm][status]
     st.tol = 1e-14;
     st.polish = false;
     st.recover = false;
-    GlobalNipm<3> nipm(st);
+    GlobalNipm<Coulomb3D> nipm(st);
     nipm.compute(g);
-    Vector r, v;
+    Vector r = Vector::Zero(g.size()), v(g.num_dofs());
     const SolverInfo info = nipm.solve(r, v);
     CHECK(info.converged() == (fclib_error(g, r, v) <= 1e-14));
   }
 }
 
 TEST_CASE("Bad input is a typed exception", "[ipm][input]") {
-  GlobalSocqpIpm<3> ipm;
-  Vector r, v;
+  GlobalSocqpIpm<Coulomb3D> ipm;
+  Vector r = Vector::Zero(3), v(3);
   CHECK_THROWS_AS(ipm.solve(r, v), UsageError);                      // compute() not called
   const GlobalProblem no_friction = unit_global(0.0, {-1, 0, 0});
   CHECK_THROWS_AS(ipm.compute(no_friction), UsageError);  // mu = 0
@@ -419,6 +426,10 @@ TEST_CASE("Bad input is a typed exception", "[ipm][input]") {
   const GlobalProblem good = unit_global(0.3, {-1, 0, 0});
   ipm.compute(good);
   CHECK_THROWS_AS(ipm.set_frozen_s(Vector::Constant(1, -1.0)), InvalidProblem);
+  Vector short_r(2), v3(3);
+  CHECK_THROWS_AS(ipm.solve(short_r, v3), InvalidProblem);           // wrong size
+  r[1] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(ipm.solve(r, v3), InvalidProblem);                 // NaN warm start
   LocalProblem frictionless;
   frictionless.d = 1;
   frictionless.W = unit_local(0.3, {1, 0, 0}).W;

@@ -6,7 +6,12 @@
 //                         Cadoux 2013); ipm::diagnose  rank, cond(W), ratio
 // Each solver works on the global form (M, H: GlobalSocqpIpm, GlobalAclm,
 // GlobalNipm) or the reduced form (W: LocalSocqpIpm, LocalAclm, LocalNipm),
-// for d = 3 or 2 and mu > 0. Linear algebra: ipm::SparseKktFactorization
+// templated on the cone (Coulomb3D or Coulomb2D; mu > 0), and follows the
+// solver contract (docs/architecture.md):
+//   fcsolve::ipm::GlobalNipm<fcsolve::Coulomb3D> nipm;
+//   nipm.compute(problem);
+//   Vector r = Vector::Zero(problem.size()), v(problem.num_dofs());  // r: warm start
+//   const fcsolve::SolverInfo& info = nipm.solve(r, v); Linear algebra: ipm::SparseKktFactorization
 // <Backend> (CHOLMOD / UMFPACK when linked, Eigen otherwise) or
 // ipm::DenseKktFactorization for small scenes.
 #pragma once

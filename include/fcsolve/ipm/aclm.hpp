@@ -41,147 +41,175 @@ class AclmSolver : public IpmSolverBase<Form> {
   AclmSettings& settings() { return settings_; }
   const AclmSettings& settings() const { return settings_; }
 
-  template <class View>
-  AclmSolver& compute(const View& p) {
+  /// Validates the problem, builds the form (KKT pattern, scaling).
+  AclmSolver& compute(const typename Form::View& p) {
     this->compute_form(p);
-    s0_.setZero(p.num_contacts());
+    s0_.resize(0);
     return *this;
   }
 
-  /// Starting tangential speeds (default 0).
+  /// Starting tangential speeds for the next solve() (default: s = ||u_T||
+  /// of a nonzero warm start, 0 otherwise).
   AclmSolver& set_initial_s(const Vector& s) {
     this->require_computed();
-    if (s.size() != s0_.size() || !s.allFinite() || (s.array() < 0).any())
+    if (s.size() != this->form_->num_contacts() || !s.allFinite() || (s.array() < 0).any())
       throw InvalidProblem("s", "expected one finite nonnegative entry per contact");
     s0_ = s;
     return *this;
   }
 
-  /// r, and w = v (global form) or u (local form).
-  SolverInfo solve(Vector& r, Vector& w) {
+  /// From the warm start r (ipm_solver_base.hpp, try_warm_start): r, and
+  /// w = v (global form) or u (local form).
+  const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> w) {
     Stopwatch clock;
-    SolverInfo& info = this->begin_solve();
+    SolverInfo& info = this->begin_solve(r, w);
     const AclmSettings& st = settings_;
-    const Index nc = this->form_->num_contacts();
-    Iterate& it = this->it_;
-    it.s = s0_;
-    this->engine_->cold_start(it, false);
-    Vector s = s0_, Fs(nc), u, best_r, best_w, ds(nc);
-    double best_error = std::numeric_limits<double>::infinity(), prev_residual = 0;
-    double failed_polish_error = std::numeric_limits<double>::infinity();
-    Vector prev_s = s;
-    int total = 0, outer = 0, newton_steps = 0, fp_steps = 0, halvings = 0;
-    double inner_tol = std::max(0.1, st.tol);
-    IpmExit last_exit = IpmExit::MaxIterations;
-    std::string note;
-    bool converged = false;
-    for (; outer < st.max_outer && total < st.max_iter; ++outer) {
-      if (clock.seconds() > st.max_time) {
-        last_exit = IpmExit::TimeLimit;
-        break;
-      }
-      IpmOptions opt = this->engine_options(st, false, std::max(inner_tol, 0.1 * st.tol),
-                                            st.max_iter - total, st.max_time - clock.seconds());
-      opt.slow_below = 0;
-      opt.record_history = false;
-      opt.iteration_offset = total;
-      opt.seconds_offset = clock.seconds();
-      const IpmReport rep = this->run_engine(it, opt);
-      total += rep.iterations;
-      last_exit = rep.exit;
-      // Outer residual: F(s) - s, and the FCLIB error of the inner solution.
-      this->extract(it, r, w);
-      this->form_->velocity(it, u);
-      for (Index a = 0; a < nc; ++a) Fs[a] = u.template segment<N - 1>(a * N + 1).norm();
-      const double error = this->form_->error(it, false);
-      const double residual = (Fs - s).norm();
-      if (st.record_history) info.history.push_back(error);
-      if (error < best_error || best_r.size() == 0) {
-        best_error = error;
-        best_r = r;
-        best_w = w;
-      }
-      if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped) {
-        note = this->describe("inner IPM", rep);
-        break;
-      }
-      if (error <= st.tol) {
-        converged = true;
-        ++outer;
-        break;
-      }
-      // Polish once the error is small, and again only after the outer
-      // loop has divided it by 10 since a polish that did not finish.
-      if (st.polish && error < st.polish_below && error < 0.1 * failed_polish_error) {
-        Vector rp = r, wp = w;
-        const PolishResult pr = this->polish(st, rp, wp, nullptr, st.tol,
-            st.max_time - clock.seconds());
-        if (pr.error < best_error) {
-          best_error = pr.error;
-          best_r = rp;
-          best_w = wp;
-        }
-        if (pr.error <= st.tol) {
-          note = this->describe_polish(pr);
-          converged = true;
-          ++outer;
-          break;
-        }
-        failed_polish_error = error;
-      }
-      // Safeguard of the Newton variant: a step that did not reduce the
-      // outer residual is halved (twice), then replaced by a fixed-point step.
-      if (st.variant == AclmVariant::Newton && outer > 0 && residual > prev_residual &&
-          halvings < 2) {
-        ++halvings;
-        const Vector back = prev_s + 0.5 * (s - prev_s);
-        restart_from(it, s, back);
-        s = back;
-        continue;
-      }
-      Vector next = Fs;  // fixed point
-      if (st.variant == AclmVariant::Newton && halvings < 2) {
-        if (newton_direction(u, Fs - s, ds)) {
-          next = (s + ds).cwiseMax(0.0);
-          ++newton_steps;
-        } else {
-          ++fp_steps;
-        }
-      } else {
-        ++fp_steps;
-      }
-      halvings = 0;
-      prev_s = s;
-      prev_residual = residual;
-      inner_tol = st.inner_ratio * error;
-      restart_from(it, s, next);
-      s = next;
+    Outer outer;
+    if (!this->try_warm_start(r, st, nullptr, st.max_time)) {
+      outer.s = s0_.size() ? s0_ : tangential_speeds_of_best();
+      outer_loop(outer, clock);
     }
-    if (best_r.size() == 0) {  // no inner run (the time budget was spent at once): the start
-      this->extract(it, best_r, best_w);
-      best_error = this->form_->error(it, false);
-    }
-    r = best_r;
-    w = best_w;
-    info.iterations = total;
-    info.error = best_error;
-    info.status = converged ? Status::Converged
-                            : (total >= st.max_iter || outer >= st.max_outer ? Status::MaxIterations
-                                                                             : this->status_of(last_exit));
+    info.iterations = outer.total;
     summary_ = std::string("ACLM ") + (st.variant == AclmVariant::Newton ? "Newton" : "fixed point") +
-               ": " + std::to_string(outer) + " outer steps (" + std::to_string(newton_steps) +
-               " Newton, " + std::to_string(fp_steps) + " fixed-point), " + std::to_string(total) +
-               " interior-point iterations, error " + format_number(best_error);
-    if (!note.empty()) summary_ += "; " + note;
-    info.message = std::string(converged ? "converged; " : "") + summary_;
-    info.solve_seconds = clock.seconds();
-    return info;
+               ": " + std::to_string(outer.steps) + " outer steps (" +
+               std::to_string(outer.newton_steps) + " Newton, " + std::to_string(outer.fp_steps) +
+               " fixed-point), " + std::to_string(outer.total) + " interior-point iterations, error " +
+               format_number(this->best_.error);
+    if (!outer.note.empty()) summary_ += "; " + outer.note;
+    this->add_to_message(summary_);
+    const bool out_of_steps = outer.total >= st.max_iter || outer.steps >= st.max_outer;
+    return this->finish(r, w, st.tol,
+                        out_of_steps ? Status::MaxIterations : this->status_of(outer.last_exit), clock);
   }
 
   /// What the last solve() did (info().message without the status).
   const std::string& summary() const { return summary_; }
 
  private:
+  /// The state of the outer loop on s.
+  struct Outer {
+    Vector s, prev_s, Fs, u;
+    double prev_residual = 0;
+    double failed_polish_error = std::numeric_limits<double>::infinity();
+    double inner_tol = 0;
+    int total = 0, steps = 0, newton_steps = 0, fp_steps = 0, halvings = 0;
+    IpmExit last_exit = IpmExit::MaxIterations;
+    std::string note;
+  };
+
+  /// The outer loop: an inner IPM solve at fixed s, the FCLIB error of its
+  /// point (a polish once small), then the next s.
+  void outer_loop(Outer& o, const Stopwatch& clock) {
+    const AclmSettings& st = settings_;
+    Iterate& it = this->it_;
+    it.s = o.s;
+    this->engine_->cold_start(it, false);
+    o.prev_s = o.s;
+    o.inner_tol = std::max(0.1, st.tol);
+    for (; o.steps < st.max_outer && o.total < st.max_iter; ++o.steps) {
+      if (clock.seconds() > st.max_time) {
+        o.last_exit = IpmExit::TimeLimit;
+        break;
+      }
+      const IpmReport rep = inner_solve(o, clock);
+      // Outer residual: F(s) - s, and the FCLIB error of the inner solution.
+      Vector r, w;
+      this->extract(it, r, w);
+      this->form_->velocity(it, o.u);
+      o.Fs = tangential_speeds_of_u(o.u);
+      const double error = this->form_->error(it, false);
+      const double residual = (o.Fs - o.s).norm();
+      if (st.record_history) this->info_.history.push_back(error);
+      this->consider(r, w, error);
+      if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped) {
+        o.note = this->describe("inner IPM", rep);
+        break;
+      }
+      if (error <= st.tol || polished(o, r, w, error, clock)) {
+        ++o.steps;
+        break;
+      }
+      next_speeds(o, residual, error);
+    }
+  }
+
+  /// The IPM on the convex problem at the current s, warm-started from the
+  /// previous point, to a tolerance that follows the outer error.
+  IpmReport inner_solve(Outer& o, const Stopwatch& clock) {
+    const AclmSettings& st = settings_;
+    EngineRun opt = this->engine_run(st, false, std::max(o.inner_tol, 0.1 * st.tol),
+                                          st.max_iter - o.total, st.max_time - clock.seconds());
+    opt.slow_below = 0;
+    opt.record_history = false;
+    opt.iteration_offset = o.total;
+    opt.seconds_offset = clock.seconds();
+    const IpmReport rep = this->run_engine(this->it_, opt);
+    o.total += rep.iterations;
+    o.last_exit = rep.exit;
+    return rep;
+  }
+
+  /// Polishes (r, w) once the error is small, and again only after the
+  /// outer loop has divided it by 10 since a polish that did not finish.
+  /// True when the polished point meets tol.
+  bool polished(Outer& o, const Vector& r, const Vector& w, double error, const Stopwatch& clock) {
+    const AclmSettings& st = settings_;
+    if (!st.polish || !(error < st.polish_below) || !(error < 0.1 * o.failed_polish_error))
+      return false;
+    Vector rp = r, wp = w;
+    const PolishResult pr = this->polish(st, rp, wp, nullptr, st.tol, st.max_time - clock.seconds());
+    this->consider(rp, wp, pr.error);
+    if (pr.error <= st.tol) {
+      o.note = this->describe_polish(pr);
+      return true;
+    }
+    o.failed_polish_error = error;
+    return false;
+  }
+
+  /// The next s: a fixed-point step F(s), or the Newton step, safeguarded
+  /// (a step that did not reduce the outer residual is halved twice, then
+  /// replaced by a fixed-point step).
+  void next_speeds(Outer& o, double residual, double error) {
+    const AclmSettings& st = settings_;
+    const bool newton = st.variant == AclmVariant::Newton;
+    if (newton && o.steps > 0 && residual > o.prev_residual && o.halvings < 2) {
+      ++o.halvings;
+      const Vector back = o.prev_s + 0.5 * (o.s - o.prev_s);
+      restart_from(this->it_, o.s, back);
+      o.s = back;
+      return;
+    }
+    Vector next = o.Fs;  // fixed point
+    Vector ds(o.s.size());
+    if (newton && o.halvings < 2 && newton_direction(o.u, o.Fs - o.s, ds)) {
+      next = (o.s + ds).cwiseMax(0.0);
+      ++o.newton_steps;
+    } else {
+      ++o.fp_steps;
+    }
+    o.halvings = 0;
+    o.prev_s = o.s;
+    o.prev_residual = residual;
+    o.inner_tol = st.inner_ratio * error;
+    restart_from(this->it_, o.s, next);
+    o.s = next;
+  }
+
+  /// s_a = ||u_T^a|| of u.
+  Vector tangential_speeds_of_u(const Vector& u) const {
+    Vector s(this->form_->num_contacts());
+    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<N - 1>(a * N + 1).norm();
+    return s;
+  }
+
+  /// The starting s of the best point so far (the warm start): ||u_T||, or 0
+  /// for a zero warm start (a cold start).
+  Vector tangential_speeds_of_best() const {
+    if ((this->best_.r.array() == 0).all()) return Vector::Zero(this->form_->num_contacts());
+    return tangential_speeds_of_u(this->velocity_of(this->best_.w));
+  }
+
   /// Warm start for the data s_new: the previous point pushed back into the
   /// interior by about the change of the data (|ds| in x's units, scaled by
   /// theta^2, the typical x/y ratio, for y).
@@ -218,10 +246,10 @@ class AclmSolver : public IpmSolverBase<Form> {
   Vector s0_;
 };
 
-template <int N = 3, class Factorization = SparseKktFactorization<DefaultBackend>>
-using GlobalAclm = AclmSolver<GlobalForm<N, Factorization>>;
-template <int N = 3, class Factorization = SparseKktFactorization<DefaultBackend>>
-using LocalAclm = AclmSolver<LocalForm<N, Factorization>>;
+template <class Cone = Coulomb3D, class Factorization = SparseKktFactorization<DefaultBackend>>
+using GlobalAclm = AclmSolver<GlobalForm<Cone, Factorization>>;
+template <class Cone = Coulomb3D, class Factorization = SparseKktFactorization<DefaultBackend>>
+using LocalAclm = AclmSolver<LocalForm<Cone, Factorization>>;
 
 }  // namespace ipm
 }  // namespace fcsolve

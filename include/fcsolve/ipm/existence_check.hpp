@@ -48,9 +48,10 @@ namespace detail {
 
 /// Builds the homogenised program (header comment) and solves it. `Ht_rows`
 /// is the n x m matrix whose transpose acts on v (H, or W^T).
-template <int N, class Backend>
+template <class Cone, class Backend>
 ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
                                 const Eigen::Ref<const Vector>& mu, double tol) {
+  constexpr int N = Cone::dim;
   const Index n = Ht_rows.rows(), m = Ht_rows.cols(), nc = mu.size();
   double h = 0;
   for (Index j = 0; j < m; ++j) h = std::max(h, Ht_rows.col(j).norm());
@@ -87,9 +88,9 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   IpmSettings s;
   s.tol = tol;
   s.max_iter = 100;
-  GlobalSocqpIpm<N, SparseKktFactorization<Backend>> ipm(s);
+  GlobalSocqpIpm<Cone, SparseKktFactorization<Backend>> ipm(s);
   ipm.compute(g);
-  Vector r, v;
+  Vector r = Vector::Zero(g.size()), v(g.num_dofs());
   ExistenceReport rep;
   rep.info = ipm.solve(r, v);
   rep.solver_error = rep.info.error;
@@ -113,11 +114,11 @@ ExistenceReport check_existence_of(const View& p, const SparseMatrix& Ht_rows, c
                                    double tol) {
   validate(p);
   return dispatch_cone(p.d, [&](auto cone) -> ExistenceReport {
-    constexpr int D = decltype(cone)::dim;
-    if constexpr (D == 1)
+    using Cone = decltype(cone);
+    if constexpr (Cone::dim == 1)
       throw UsageError("the existence check needs friction cones (d = 2 or 3)");
     else
-      return solve_existence<D, Backend>(Ht_rows, w, p.mu, tol);
+      return solve_existence<Cone, Backend>(Ht_rows, w, p.mu, tol);
   });
 }
 

@@ -30,12 +30,18 @@
 namespace fcsolve {
 namespace ipm {
 
-template <int N, class Factorization>
+template <class ConeType, class Factorization>
 class GlobalForm {
+  static_assert(ConeType::dim == 2 || ConeType::dim == 3,
+                "the interior-point forms map a Coulomb cone (d = 2 or 3) onto the Lorentz cone");
+
  public:
-  static constexpr int dim = N;
+  using Cone = ConeType;
+  static constexpr int dim = Cone::dim;
+  /// Order of the Lorentz cone L^N the iterates live in (N = d).
+  static constexpr int N = dim;
+  using View = GlobalProblemView;
   static constexpr bool is_global = true;
-  using Cone = CoulombCone<N>;
   using Backend = typename Factorization::Backend;
 
   /// Scales H, builds the augmented pattern, factorises M once (free
@@ -169,6 +175,18 @@ class GlobalForm {
   void velocity(const Iterate& it, Vector& u) const {
     u.noalias() = p_->H.transpose() * it.v;
     u += p_->w;
+  }
+
+  /// v = M^-1 (H r + f) of a given r (a warm start) and the error of (r, v):
+  /// the FCLIB error, or with `frozen` the one of the problem with s frozen.
+  double error_of(const Vector& r, Vector& v, const Vector& s, bool frozen) const {
+    v = reduction_.velocity(r);
+    const Vector u = p_->H.transpose() * v + p_->w;
+    const Vector Mv = p_->M * v, Hr = p_->H * r;
+    const double denom = std::max({p_->f.norm(), Mv.norm(), Hr.norm()});
+    const double equil = (Mv - Hr - p_->f).norm() / (denom > 0 ? denom : 1.0);
+    return std::max(std::sqrt(natural_map_squared<N>(r, u, p_->mu, s, frozen)) / error_scale(),
+                    equil);
   }
 
   /// FCLIB error of (r, v) (core/error.hpp; equal to global_error_report

@@ -30,7 +30,7 @@ namespace fcsolve {
 namespace ipm {
 
 /// The step knobs a user sets (IpmSettings, ipm_solver_base.hpp) and the
-/// engine reads (IpmOptions): declared, with their defaults, only here.
+/// engine reads: declared, with their defaults, only here.
 struct IpmStepSettings {
   double step_fraction = 0.99;   ///< fraction to the boundary gamma
   double sigma_max = 1.0;        ///< upper bound on Mehrotra's centring parameter
@@ -39,10 +39,16 @@ struct IpmStepSettings {
   double neighbourhood = 0.0;    ///< eta: every contact keeps lambda_min(lambda)^2 >= eta mu (0: off)
 };
 
-/// One run of the engine: the common settings (tol, max_iter, max_time,
-/// history, callback; core/solver_settings.hpp) and the step knobs, both
-/// copied from the solver's IpmSettings, plus what the solvers steer.
-struct IpmOptions : SolverSettings, IpmStepSettings {
+/// One run of the engine, as a solver asks for it (IpmSolverBase::engine_run
+/// fills it from the solver's settings): the step knobs, this run's budget,
+/// and what the solver steers.
+struct EngineRun {
+  IpmStepSettings step;          ///< the user's step knobs
+  double tol = 0;                ///< stop once the error is <= tol
+  int max_iter = 0;              ///< Newton steps in this run
+  double max_time = 0;           ///< seconds for this run
+  bool record_history = false;
+  const IterationCallback* callback = nullptr;  ///< the solver's, or none
   bool coupled = false;          ///< NIPM: s unknown with s = ||x_T||
   int stall_window = 12;         ///< iterations without a better error -> NoProgress
   /// Below this error, stop (SlowProgress) once three iterations have not
@@ -169,149 +175,26 @@ class InteriorPoint {
   }
 
   /// Runs the predictor-corrector from `it` (strictly interior). On return
-  /// `it` is the best iterate met (lowest error).
-  IpmReport run(Iterate& it, const IpmOptions& opt) {
+  /// `it` is the best iterate met (lowest error). Each iteration, as in
+  /// Mehrotra (1992) with NT scaling (Vandenberghe 2010, sec. 5.3):
+  /// residuals and error, termination test, scaling update, factorisation,
+  /// affine (predictor) step, combined (corrector) step, step length.
+  IpmReport run(Iterate& it, const EngineRun& opt) {
     Stopwatch clock;
     IpmReport rep;
-    const Index nc = form_.num_contacts();
-    const bool coupled = opt.coupled;
-    const double fake_tol = opt.fake_residual > 0 ? opt.fake_residual : opt.tol;
-    double best_error = std::numeric_limits<double>::infinity();
-    int last_improvement = 0, small_steps = 0;
+    start_progress();
     for (int k = 0;; ++k) {
-      form_.residuals(it, r_d_, r_p_);
-      if (coupled)
-        for (Index a = 0; a < nc; ++a)
-          r_s_[a] = it.s[a] - it.x.template segment<N - 1>(a * N + 1).norm();
-      const double err = form_.error(it, !coupled);
-      if (!std::isfinite(err)) {
-        rep.exit = IpmExit::NumericalError;
-        rep.note = "non-finite error";
-        break;
-      }
-      if (opt.record_history) rep.history.push_back(err);
-      if (err < best_error) {
-        best_error = err;
-        best_ = it;
-        last_improvement = k;
-      }
-      rep.iterations = k;
-      rep.mu = it.x.dot(it.y) / double(nc);
-      if (rep.fake_iteration < 0 && err > opt.tol && talk_residual(it) <= fake_tol) {
-        rep.fake_iteration = k;
-        rep.fake_error = err;
-      }
-      // k = 0 is the starting point, not an iteration: callbacks see the
-      // steps numbered 1, 2, ... (continued across ACLM's inner runs).
-      if (opt.callback && k > 0) {
-        IterationInfo info{opt.iteration_offset + k, err, true, opt.seconds_offset + clock.seconds()};
-        if (callback_requests_stop(opt.callback, info)) {
-          rep.exit = IpmExit::Stopped;
-          break;
-        }
-      }
-      if (err <= opt.tol) {
-        rep.exit = IpmExit::Converged;
-        break;
-      }
-      if (k >= opt.max_iter) {
-        rep.exit = IpmExit::MaxIterations;
-        break;
-      }
-      if (clock.seconds() > opt.max_time) {
-        rep.exit = IpmExit::TimeLimit;
-        break;
-      }
-      if (k - last_improvement > opt.stall_window) {
-        rep.exit = IpmExit::NoProgress;
-        break;
-      }
-      recent_[std::size_t(k % 4)] = best_error;
-      if (k >= 3 && best_error < opt.slow_below && best_error > 0.5 * recent_[std::size_t((k - 3) % 4)]) {
-        rep.exit = IpmExit::SlowProgress;
-        break;
-      }
-      // NT scaling, the barrier parameter, the subgradient of ||x_T||.
-      bool interior = true;
-      for (Index a = 0; a < nc && interior; ++a) {
-        auto xa = it.x.template segment<N>(a * N);
-        auto ya = it.y.template segment<N>(a * N);
-        auto& sc = state_.scaling[std::size_t(a)];
-        if (!sc.compute(xa, ya)) {
-          // Rounding put the point on (or past) the boundary: the step kept
-          // it inside in exact arithmetic, so restore a tiny relative margin.
-          keep_inside(xa);
-          keep_inside(ya);
-          interior = sc.compute(xa, ya);
-        }
-      }
-      if (!interior) {
-        rep.exit = IpmExit::NumericalError;
-        rep.note = "an iterate reached the cone boundary in floating point";
-        break;
-      }
-      const double mu = it.x.dot(it.y) / double(nc);
-      if (coupled)
-        for (Index a = 0; a < nc; ++a) {
-          const auto xt = it.x.template segment<N - 1>(a * N + 1);
-          const double nt = xt.norm();
-          auto& na = state_.normal[std::size_t(a)];
-          na.setZero();
-          if (nt > 0) na.template tail<N - 1>() = xt / nt;
-        }
-      Stopwatch fclock;
-      bool ok = false;
-      for (int attempt = 0; attempt < 6 && !ok; ++attempt) {
-        const double rel = attempt == 0 ? opt.regularization
-                                        : std::max(opt.regularization, 1e-14) * std::pow(100.0, attempt);
-        ok = form_.factorize(state_, coupled, regularization_delta(rel));
-        ++rep.factorizations;
-      }
-      rep.factor_seconds += fclock.seconds();
-      if (!ok) {
-        rep.exit = IpmExit::NumericalError;
-        rep.note = "the Newton matrix could not be factorised, even regularised";
-        break;
-      }
-      rp_tilde_ = r_p_;
-      if (coupled) add_normal<N>(rp_tilde_, Vector(-r_s_));
-      // Predictor (affine scaling).
-      for (Index a = 0; a < nc; ++a) xi_.template segment<N>(a * N) = -lambda(a);
-      newton_direction(rp_tilde_, opt);
-      const double alpha_aff = std::min(1.0, max_step());
-      const double mu_aff =
-          (it.x + alpha_aff * d_.x).dot(it.y + alpha_aff * d_.y) / double(nc);
-      const double sigma = std::clamp(std::pow(std::max(mu_aff, 0.0) / mu, 3.0), 0.0, opt.sigma_max);
-      // Corrector (centring + second-order term).
-      for (Index a = 0; a < nc; ++a) {
-        const Vec<N> lam = lambda(a);
-        Vec<N> rc = -jordan::product<N>(lam, lam) -
-                    jordan::product<N>(Vec<N>(dxs_.template segment<N>(a * N)),
-                                       Vec<N>(dys_.template segment<N>(a * N)));
-        rc[0] += sigma * mu;
-        xi_.template segment<N>(a * N) = jordan_quotient<N>(lam, rc);
-      }
-      newton_direction(rp_tilde_, opt);
-      double alpha = std::min(1.0, opt.step_fraction * max_step());
-      alpha = centred_step(it, alpha, opt.neighbourhood);
-      if (!std::isfinite(alpha) || !(alpha > 0)) {
-        rep.exit = IpmExit::NumericalError;
-        rep.note = "no admissible step";
-        break;
-      }
-      if (form_.primal_size() > 0) it.v += alpha * d_.v;
-      it.x += alpha * d_.x;
-      it.y += alpha * d_.y;
-      if (coupled) it.s += alpha * d_.s;
-      small_steps = alpha < 1e-8 ? small_steps + 1 : 0;
-      if (small_steps >= 3) {
-        rep.iterations = k + 1;
-        rep.exit = IpmExit::SmallStep;
-        break;
-      }
+      const double err = residuals_and_error(it, opt.coupled);
+      if (terminated(k, err, it, opt, clock, rep)) break;
+      if (!update_scaling(it, opt.coupled, rep)) break;
+      if (!factorize(opt, rep)) break;
+      const double mu = it.x.dot(it.y) / double(form_.num_contacts());
+      const double sigma = affine_step(it, mu, opt);
+      combined_direction(sigma, mu, opt);
+      if (!take_step(it, opt, k, rep)) break;
     }
     it = best_;
-    rep.error = best_error;
+    rep.error = best_error_;
     rep.seconds = clock.seconds();
     return rep;
   }
@@ -331,6 +214,155 @@ class InteriorPoint {
  private:
   Vec<N> lambda(Index a) const { return state_.scaling[std::size_t(a)].lambda; }
 
+  void start_progress() {
+    best_error_ = std::numeric_limits<double>::infinity();
+    last_improvement_ = 0;
+    small_steps_ = 0;
+  }
+
+  /// Residuals r_d, r_p (and r_s = s - ||x_T|| when coupled) at `it`, and
+  /// its error: frozen-s natural map, or FCLIB when coupled.
+  double residuals_and_error(const Iterate& it, bool coupled) {
+    form_.residuals(it, r_d_, r_p_);
+    if (coupled)
+      for (Index a = 0; a < form_.num_contacts(); ++a)
+        r_s_[a] = it.s[a] - it.x.template segment<N - 1>(a * N + 1).norm();
+    return form_.error(it, !coupled);
+  }
+
+  /// Keeps the best iterate, then the termination test: error <= tol, the
+  /// budgets, the callback, no progress, slow progress (time to polish).
+  /// True with rep.exit set when the run ends at iteration k.
+  bool terminated(int k, double err, const Iterate& it, const EngineRun& opt,
+                  const Stopwatch& clock, IpmReport& rep) {
+    if (!std::isfinite(err)) return fail(rep, "non-finite error");
+    if (opt.record_history) rep.history.push_back(err);
+    if (err < best_error_) {
+      best_error_ = err;
+      best_ = it;
+      last_improvement_ = k;
+    }
+    rep.iterations = k;
+    rep.mu = it.x.dot(it.y) / double(form_.num_contacts());
+    const double fake_tol = opt.fake_residual > 0 ? opt.fake_residual : opt.tol;
+    if (rep.fake_iteration < 0 && err > opt.tol && talk_residual(it) <= fake_tol) {
+      rep.fake_iteration = k;
+      rep.fake_error = err;
+    }
+    // k = 0 is the starting point, not an iteration: callbacks see the
+    // steps numbered 1, 2, ... (continued across ACLM's inner runs).
+    if (opt.callback && k > 0) {
+      const IterationInfo info{opt.iteration_offset + k, err, true, opt.seconds_offset + clock.seconds()};
+      if (callback_requests_stop(*opt.callback, info)) return exit_with(rep, IpmExit::Stopped);
+    }
+    if (err <= opt.tol) return exit_with(rep, IpmExit::Converged);
+    if (k >= opt.max_iter) return exit_with(rep, IpmExit::MaxIterations);
+    if (clock.seconds() > opt.max_time) return exit_with(rep, IpmExit::TimeLimit);
+    if (k - last_improvement_ > opt.stall_window) return exit_with(rep, IpmExit::NoProgress);
+    recent_[std::size_t(k % 4)] = best_error_;
+    if (k >= 3 && best_error_ < opt.slow_below &&
+        best_error_ > 0.5 * recent_[std::size_t((k - 3) % 4)])
+      return exit_with(rep, IpmExit::SlowProgress);
+    return false;
+  }
+
+  static bool exit_with(IpmReport& rep, IpmExit e) {
+    rep.exit = e;
+    return true;
+  }
+  static bool fail(IpmReport& rep, const char* why) {
+    rep.exit = IpmExit::NumericalError;
+    rep.note = why;
+    return true;
+  }
+
+  /// NT scaling of every contact and, when coupled, the subgradient n_a of
+  /// ||x_T||. False (NumericalError) when an iterate left the cone.
+  bool update_scaling(Iterate& it, bool coupled, IpmReport& rep) {
+    const Index nc = form_.num_contacts();
+    for (Index a = 0; a < nc; ++a) {
+      auto xa = it.x.template segment<N>(a * N);
+      auto ya = it.y.template segment<N>(a * N);
+      auto& sc = state_.scaling[std::size_t(a)];
+      if (sc.compute(xa, ya)) continue;
+      // Rounding put the point on (or past) the boundary: the step kept it
+      // inside in exact arithmetic, so restore a tiny relative margin.
+      keep_inside(xa);
+      keep_inside(ya);
+      if (!sc.compute(xa, ya))
+        return !fail(rep, "an iterate reached the cone boundary in floating point");
+    }
+    if (coupled)
+      for (Index a = 0; a < nc; ++a) {
+        const auto xt = it.x.template segment<N - 1>(a * N + 1);
+        const double nt = xt.norm();
+        auto& na = state_.normal[std::size_t(a)];
+        na.setZero();
+        if (nt > 0) na.template tail<N - 1>() = xt / nt;
+      }
+    return true;
+  }
+
+  /// Assembles and factorises the Newton matrix, with a static
+  /// regularisation grown x100 per failed attempt (up to 6).
+  bool factorize(const EngineRun& opt, IpmReport& rep) {
+    Stopwatch fclock;
+    bool ok = false;
+    for (int attempt = 0; attempt < 6 && !ok; ++attempt) {
+      const double rel = attempt == 0 ? opt.step.regularization
+                                      : std::max(opt.step.regularization, 1e-14) * std::pow(100.0, attempt);
+      ok = form_.factorize(state_, opt.coupled, regularization_delta(rel));
+      ++rep.factorizations;
+    }
+    rep.factor_seconds += fclock.seconds();
+    return ok || !fail(rep, "the Newton matrix could not be factorised, even regularised");
+  }
+
+  /// Predictor: the affine-scaling direction (xi = -lambda) and from its
+  /// step Mehrotra's centring parameter sigma = (mu_aff / mu)^3.
+  double affine_step(const Iterate& it, double mu, const EngineRun& opt) {
+    const Index nc = form_.num_contacts();
+    rp_tilde_ = r_p_;
+    if (opt.coupled) add_normal<N>(rp_tilde_, Vector(-r_s_));
+    for (Index a = 0; a < nc; ++a) xi_.template segment<N>(a * N) = -lambda(a);
+    newton_direction(rp_tilde_, opt);
+    const double alpha_aff = std::min(1.0, max_step());
+    const double mu_aff = (it.x + alpha_aff * d_.x).dot(it.y + alpha_aff * d_.y) / double(nc);
+    return std::clamp(std::pow(std::max(mu_aff, 0.0) / mu, 3.0), 0.0, opt.step.sigma_max);
+  }
+
+  /// Corrector: xi = lambda \ (sigma mu e - lambda o lambda - dxa~ o dya~),
+  /// centring plus the second-order term of the affine direction.
+  void combined_direction(double sigma, double mu, const EngineRun& opt) {
+    for (Index a = 0; a < form_.num_contacts(); ++a) {
+      const Vec<N> lam = lambda(a);
+      Vec<N> rc = -jordan::product<N>(lam, lam) -
+                  jordan::product<N>(Vec<N>(dxs_.template segment<N>(a * N)),
+                                     Vec<N>(dys_.template segment<N>(a * N)));
+      rc[0] += sigma * mu;
+      xi_.template segment<N>(a * N) = jordan_quotient<N>(lam, rc);
+    }
+    newton_direction(rp_tilde_, opt);
+  }
+
+  /// Step length gamma * (largest step in the cones), kept in the
+  /// neighbourhood, and the update. False when the run ends (no admissible
+  /// step, or three steps below 1e-8: SmallStep).
+  bool take_step(Iterate& it, const EngineRun& opt, int k, IpmReport& rep) {
+    double alpha = std::min(1.0, opt.step.step_fraction * max_step());
+    alpha = centred_step(it, alpha, opt.step.neighbourhood);
+    if (!std::isfinite(alpha) || !(alpha > 0)) return !fail(rep, "no admissible step");
+    if (form_.primal_size() > 0) it.v += alpha * d_.v;
+    it.x += alpha * d_.x;
+    it.y += alpha * d_.y;
+    if (opt.coupled) it.s += alpha * d_.s;
+    small_steps_ = alpha < 1e-8 ? small_steps_ + 1 : 0;
+    if (small_steps_ < 3) return true;
+    rep.iterations = k + 1;
+    rep.exit = IpmExit::SmallStep;
+    return false;
+  }
+
   /// z0 >= (1 + 1e-13) ||z1|| (and z0 > 0): a relative change at rounding level.
   template <class Segment>
   static void keep_inside(Segment&& z) {
@@ -343,8 +375,8 @@ class InteriorPoint {
     return relative * form_.diagonal_scale();
   }
 
-  void newton_direction(const Vector& rp_tilde, const IpmOptions& opt) {
-    form_.direction(state_, xi_, r_d_, rp_tilde, d_, opt.refinement);
+  void newton_direction(const Vector& rp_tilde, const EngineRun& opt) {
+    form_.direction(state_, xi_, r_d_, rp_tilde, d_, opt.step.refinement);
     const Index nc = form_.num_contacts();
     if (opt.coupled)
       for (Index a = 0; a < nc; ++a)
@@ -423,6 +455,8 @@ class InteriorPoint {
   Iterate d_, best_;
   Vector r_d_, r_p_, rp_tilde_, r_s_, xi_, dxs_, dys_;
   std::array<double, 4> recent_{};  // best error of the last iterations
+  double best_error_ = 0;
+  int last_improvement_ = 0, small_steps_ = 0;
 };
 
 }  // namespace ipm

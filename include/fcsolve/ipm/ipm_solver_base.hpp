@@ -12,6 +12,7 @@
 #include <fcsolve/problem/validate.hpp>
 
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -81,24 +82,92 @@ class IpmSolverBase {
     if (!form_) throw UsageError("interior-point solver: call compute(problem) before solve()");
   }
 
-  /// Checks compute() was called and resets info() (keeping the setup time).
-  SolverInfo& begin_solve() {
+  /// Checks solve()'s arguments (compute() called; r, the warm start: m
+  /// finite entries; w: n entries for v, m for u) and resets info() (keeping
+  /// the setup time) and the best point.
+  SolverInfo& begin_solve(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& w) {
     require_computed();
+    const Index m = form_->size(), n = Form::is_global ? form_->primal_size() : m;
+    if (r.size() != m)
+      throw InvalidProblem("r", "expected " + std::to_string(m) + " entries, got " +
+                                    std::to_string(r.size()));
+    if (w.size() != n)
+      throw InvalidProblem(Form::is_global ? "v" : "u", "expected " + std::to_string(n) +
+                                                            " entries, got " + std::to_string(w.size()));
+    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
     stats_ = IpmStatistics();
     const double setup = info_.setup_seconds;
     info_ = SolverInfo();
     info_.setup_seconds = setup;
+    best_ = BestPoint();
     return info_;
   }
 
-  IpmOptions engine_options(const IpmSettings& s, bool coupled, double tol, int max_iter,
-                            double max_time) const {
-    IpmOptions o;
-    static_cast<SolverSettings&>(o) = s;
-    static_cast<IpmStepSettings&>(o) = s;
+  /// How solve() uses its warm start r (an interior point starts from the
+  /// centre of the cones, not from a given point): a warm start that meets
+  /// tol is the answer, with no iteration; a nonzero one whose error is
+  /// below polish_below is finished by the natural-map polish; otherwise the
+  /// IPM starts cold. Either way the warm start (or its polished point) is
+  /// the first best point, so solve() never returns a worse one. `frozen`:
+  /// the s of the convex problem (null: Coulomb's law). True when the best
+  /// point meets tol: solve() is done.
+  bool try_warm_start(const Eigen::Ref<const Vector>& r, const IpmSettings& st,
+                      const Vector* frozen, double seconds_left) {
+    Vector r0 = r, w0;
+    const double error = form_->error_of(r0, w0, frozen ? *frozen : it_.s, frozen != nullptr);
+    consider(r0, w0, error);
+    if (error <= st.tol) {
+      info_.message = "the warm start meets tol";
+      return true;
+    }
+    if (!st.polish || !(error <= st.polish_below) || (r0.array() == 0).all()) return false;
+    const PolishResult pr = polish(st, r0, w0, frozen, st.tol, seconds_left);
+    info_.message = "warm start: " + describe_polish(pr);
+    consider(r0, w0, pr.error);
+    return best_.error <= st.tol;
+  }
+
+  /// Appends a part to info().message ("; " between parts).
+  void add_to_message(const std::string& text) {
+    info_.message += (info_.message.empty() ? "" : "; ") + text;
+  }
+
+  /// Keeps (r, w) when its error (of the problem solved) beats the best
+  /// point so far; true when it did.
+  bool consider(const Vector& r, const Vector& w, double error) {
+    if (!(error < best_.error) && best_.r.size()) return false;
+    best_.r = r;
+    best_.w = w;
+    best_.error = error;
+    return true;
+  }
+
+  /// Writes the best point into (r, w) and its error into info(); the status
+  /// is Converged iff that error is <= tol ("converged; " then leads the
+  /// message), `otherwise` if not.
+  const SolverInfo& finish(Eigen::Ref<Vector> r, Eigen::Ref<Vector> w, double tol,
+                           Status otherwise, const Stopwatch& clock) {
+    r = best_.r;
+    w = best_.w;
+    info_.error = best_.error;
+    info_.status = best_.error <= tol ? Status::Converged : otherwise;
+    if (info_.status == Status::Converged) info_.message = "converged; " + info_.message;
+    info_.solve_seconds = clock.seconds();
+    return info_;
+  }
+
+  /// One engine run as these settings ask for it: the step knobs, the
+  /// callback, the history, the switch to the polish; tol and the budgets
+  /// are the caller's (what is left of them).
+  EngineRun engine_run(const IpmSettings& s, bool coupled, double tol, int max_iter,
+                       double max_time) const {
+    EngineRun o;
+    o.step = s;
     o.tol = tol;
     o.max_iter = max_iter;
     o.max_time = max_time;
+    o.record_history = s.record_history;
+    o.callback = &s.callback;
     o.coupled = coupled;
     o.slow_below = s.polish ? s.polish_below : 0.0;
     return o;
@@ -125,6 +194,18 @@ class IpmSolverBase {
                                                   s.polish_iterations, seconds_left);
       w = form_->view().W * r + form_->view().q;
       return res;
+    }
+  }
+
+  /// The local velocity u of a solve's second vector: u = H^T v + w (the
+  /// problem's w) for the global form, u itself for the local one.
+  Vector velocity_of(const Vector& v_or_u) const {
+    if constexpr (Form::is_global) {
+      Vector u = form_->view().H.transpose() * v_or_u;
+      u += form_->view().w;
+      return u;
+    } else {
+      return v_or_u;
     }
   }
 
@@ -164,18 +245,25 @@ class IpmSolverBase {
   }
 
   /// Runs the engine and accounts for its factorisations.
-  IpmReport run_engine(Iterate& it, const IpmOptions& opt) {
+  IpmReport run_engine(Iterate& it, const EngineRun& opt) {
     IpmReport rep = engine_->run(it, opt);
     stats_.factorizations += rep.factorizations;
     stats_.factor_seconds += rep.factor_seconds;
     return rep;
   }
 
+  /// The best (r, w) of a solve and its error: w = v (global) or u (local).
+  struct BestPoint {
+    Vector r, w;
+    double error = std::numeric_limits<double>::infinity();
+  };
+
   std::unique_ptr<Form> form_;
   std::unique_ptr<InteriorPoint<Form>> engine_;
   Iterate it_;
   SolverInfo info_;
   IpmStatistics stats_;
+  BestPoint best_;
 };
 
 }  // namespace ipm

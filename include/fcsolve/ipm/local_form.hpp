@@ -22,12 +22,18 @@
 namespace fcsolve {
 namespace ipm {
 
-template <int N, class Factorization>
+template <class ConeType, class Factorization>
 class LocalForm {
+  static_assert(ConeType::dim == 2 || ConeType::dim == 3,
+                "the interior-point forms map a Coulomb cone (d = 2 or 3) onto the Lorentz cone");
+
  public:
-  static constexpr int dim = N;
+  using Cone = ConeType;
+  static constexpr int dim = Cone::dim;
+  /// Order of the Lorentz cone L^N the iterates live in (N = d).
+  static constexpr int N = dim;
+  using View = LocalProblemView;
   static constexpr bool is_global = false;
-  using Cone = CoulombCone<N>;
   using Backend = typename Factorization::Backend;
 
   void compute(const LocalProblemView& p) {
@@ -121,6 +127,14 @@ class LocalForm {
     reaction(it, r);
     u.noalias() = p_->W * r;
     u += p_->q;
+  }
+
+  /// u = W r + q of a given r (a warm start) and the error of (r, u): the
+  /// FCLIB error, or with `frozen` the one of the problem with s frozen.
+  double error_of(const Vector& r, Vector& u, const Vector& s, bool frozen) const {
+    u.noalias() = p_->W * r;
+    u += p_->q;
+    return std::sqrt(natural_map_squared<N>(r, u, p_->mu, s, frozen)) / error_scale();
   }
 
   /// FCLIB error ||F_nat|| / ||q|| (or with s frozen, see GlobalForm::error).

@@ -58,136 +58,137 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
   NipmSettings& settings() { return settings_; }
   const NipmSettings& settings() const { return settings_; }
 
-  template <class View>
-  NonsmoothIpm& compute(const View& p) {
+  /// Validates the problem, builds the form (KKT pattern, scaling).
+  NonsmoothIpm& compute(const typename Form::View& p) {
     this->compute_form(p);
     return *this;
   }
 
-  /// r, and w = v (global form) or u (local form).
-  SolverInfo solve(Vector& r, Vector& w) {
+  /// From the warm start r (ipm_solver_base.hpp, try_warm_start): r, and
+  /// w = v (global form) or u (local form).
+  const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> w) {
     Stopwatch clock;
-    SolverInfo& info = this->begin_solve();
+    this->begin_solve(r, w);
     const NipmSettings& st = settings_;
-    Iterate& it = this->it_;
-    it.s.setZero(this->form_->num_contacts());
-    this->engine_->cold_start(it, true);
-
-    best_error_ = std::numeric_limits<double>::infinity();
-    best_r_.resize(0);
-    std::string& msg = info.message;
-    int total = 0;
-    auto remaining = [&] { return st.max_iter - total; };
-    auto run = [&](const char* what, IpmOptions opt) {
-      opt.max_iter = remaining();
-      opt.max_time = st.max_time - clock.seconds();
-      opt.iteration_offset = total;
-      opt.seconds_offset = clock.seconds();
-      const IpmReport rep = this->run_engine(it, opt);
-      total += rep.iterations;
-      info.history.insert(info.history.end(), rep.history.begin(), rep.history.end());
-      msg += (msg.empty() ? "" : "; ") + this->describe(what, rep);
-      Vector rr, ww;
-      this->extract(it, rr, ww);
-      consider(rr, ww, rep.error);
-      last_exit_ = rep.exit;
-      return rep;
-    };
-    auto polish_best = [&] {
-      if (!st.polish || best_error_ <= st.tol) return;
-      Vector rr = best_r_, ww = best_w_;
-      const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol,
-          st.max_time - clock.seconds());
-      msg += "; " + this->describe_polish(pr);
-      consider(rr, ww, pr.error);
-    };
-    auto done = [&] { return best_error_ <= st.tol || remaining() <= 0 || clock.seconds() > st.max_time; };
-
-    // 1. NIPM until it slows down, then the polish.
-    IpmOptions opt = this->engine_options(st, true, st.tol, st.max_iter, st.max_time);
-    const IpmReport first = run("NIPM", opt);
-    polish_best();
-    bool stopped = first.exit == IpmExit::Stopped;
-
-    // 2-4. The recovery strategies, in order, while tol is not met.
-    auto recover = [&](Recovery step) -> RecoveryResult {
-      switch (step) {
-        case Recovery::Resume: {  // the IPM resumed while it still progresses
-          if (first.exit != IpmExit::SlowProgress) return RecoveryResult::NotApplicable;
-          IpmOptions resumed = opt;
-          resumed.slow_below = 0;
-          const IpmReport rep = run("NIPM resumed", resumed);
-          polish_best();
-          return rep.exit == IpmExit::Stopped ? RecoveryResult::Stopped : RecoveryResult::Ran;
-        }
-        case Recovery::Recentre: {  // from the best iterate at a larger barrier parameter
-          if (!st.recentre || best_iterate_.x.size() == 0) return RecoveryResult::NotApplicable;
-          it = best_iterate_;
-          recentre(it, 1e4);
-          IpmOptions safe = opt;
-          safe.sigma_max = std::min(st.sigma_max, 0.3);
-          safe.step_fraction = std::min(st.step_fraction, 0.9);
-          safe.slow_below = st.polish ? st.polish_below : 0.0;
-          const IpmReport rep = run("re-centred NIPM", safe);
-          polish_best();
-          return rep.exit == IpmExit::Stopped ? RecoveryResult::Stopped : RecoveryResult::Ran;
-        }
-        case Recovery::Aclm: {  // ACLM Newton from the best iterate's s = ||u_T||
-          AclmSettings as;
-          static_cast<IpmSettings&>(as) = static_cast<const IpmSettings&>(st);
-          as.sigma_max = 1.0;
-          as.max_iter = remaining();
-          as.max_time = st.max_time - clock.seconds();
-          as.record_history = false;
-          as.callback = IterationCallback();
-          AclmSolver<Form> aclm(as);
-          aclm.compute(this->form_->view());
-          aclm.set_initial_s(tangential_speeds(best_r_, best_w_));
-          Vector rr, ww;
-          const SolverInfo ai = aclm.solve(rr, ww);
-          total += ai.iterations;
-          this->stats_.factorizations += aclm.statistics().factorizations;
-          this->stats_.factor_seconds += aclm.statistics().factor_seconds;
-          msg += "; fallback " + aclm.summary();
-          consider(rr, ww, ai.error);
-          return RecoveryResult::Ran;
-        }
+    best_iterate_ = Iterate();
+    total_ = 0;
+    stopped_ = false;
+    last_exit_ = IpmExit::Converged;
+    if (!this->try_warm_start(r, st, nullptr, st.max_time)) {
+      // 1. NIPM until it slows down, then the polish.
+      Iterate& it = this->it_;
+      it.s.setZero(this->form_->num_contacts());
+      this->engine_->cold_start(it, true);
+      const EngineRun opt = this->engine_run(st, true, st.tol, st.max_iter, st.max_time);
+      first_exit_ = run("NIPM", opt, clock).exit;
+      polish_best(clock);
+      stopped_ = first_exit_ == IpmExit::Stopped;
+      // 2-4. The recovery strategies, in order, while tol is not met.
+      for (const Recovery step : kRecoveryOrder) {
+        if (done(clock) || stopped_ || !st.recover) break;
+        stopped_ = recover(step, opt, clock) == RecoveryResult::Stopped;
       }
-      return RecoveryResult::NotApplicable;
-    };
-    for (const Recovery step : kRecoveryOrder) {
-      if (done() || stopped || !st.recover) break;
-      stopped = recover(step) == RecoveryResult::Stopped;
     }
-    r = best_r_;
-    w = best_w_;
-    info.iterations = total;
-    info.error = best_error_;
-    if (best_error_ <= st.tol) {
-      info.status = Status::Converged;
-      msg = "converged; " + msg;
-    } else if (stopped) {
-      info.status = Status::Stopped;
-    } else if (remaining() <= 0) {
-      info.status = Status::MaxIterations;
-    } else if (clock.seconds() > st.max_time) {
-      info.status = Status::TimeLimit;
-    } else {
-      info.status = last_exit_ == IpmExit::NumericalError ? Status::NumericalError : Status::Stalled;
-    }
-    info.solve_seconds = clock.seconds();
-    return info;
+    this->info_.iterations = total_;
+    Status otherwise = Status::Stalled;
+    if (stopped_) otherwise = Status::Stopped;
+    else if (remaining() <= 0) otherwise = Status::MaxIterations;
+    else if (clock.seconds() > st.max_time) otherwise = Status::TimeLimit;
+    else if (last_exit_ == IpmExit::NumericalError) otherwise = Status::NumericalError;
+    return this->finish(r, w, st.tol, otherwise, clock);
   }
 
  private:
-  /// Keeps (r, w) if its FCLIB error beats the best so far (and the iterate
-  /// behind it, for the re-centring).
-  void consider(const Vector& r, const Vector& w, double error) {
-    if (!(error < best_error_) && best_r_.size()) return;
-    best_error_ = error;
-    best_r_ = r;
-    best_w_ = w;
-    best_iterate_ = this->it_;
+  int remaining() const { return settings_.max_iter - total_; }
+  bool done(const Stopwatch& clock) const {
+    return this->best_.error <= settings_.tol || remaining() <= 0 ||
+           clock.seconds() > settings_.max_time;
+  }
+
+  /// One engine run from the current iterate with what is left of the
+  /// iteration and time budgets; its point is a candidate.
+  IpmReport run(const char* what, EngineRun opt, const Stopwatch& clock) {
+    opt.max_iter = remaining();
+    opt.max_time = settings_.max_time - clock.seconds();
+    opt.iteration_offset = total_;
+    opt.seconds_offset = clock.seconds();
+    const IpmReport rep = this->run_engine(this->it_, opt);
+    total_ += rep.iterations;
+    SolverInfo& info = this->info_;
+    info.history.insert(info.history.end(), rep.history.begin(), rep.history.end());
+    this->add_to_message(this->describe(what, rep));
+    Vector rr, ww;
+    this->extract(this->it_, rr, ww);
+    consider_iterate(rr, ww, rep.error);
+    last_exit_ = rep.exit;
+    return rep;
+  }
+
+  /// The natural-map polish from the best point, unless it meets tol.
+  void polish_best(const Stopwatch& clock) {
+    const NipmSettings& st = settings_;
+    if (!st.polish || this->best_.error <= st.tol) return;
+    Vector rr = this->best_.r, ww = this->best_.w;
+    const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol, st.max_time - clock.seconds());
+    this->add_to_message(this->describe_polish(pr));
+    this->consider(rr, ww, pr.error);
+  }
+
+  /// Runs one recovery strategy (steps 2-4 of the header comment).
+  RecoveryResult recover(Recovery step, const EngineRun& opt, const Stopwatch& clock) {
+    const NipmSettings& st = settings_;
+    switch (step) {
+      case Recovery::Resume: {  // the IPM resumed while it still progresses
+        if (first_exit_ != IpmExit::SlowProgress) return RecoveryResult::NotApplicable;
+        EngineRun resumed = opt;
+        resumed.slow_below = 0;
+        const IpmReport rep = run("NIPM resumed", resumed, clock);
+        polish_best(clock);
+        return rep.exit == IpmExit::Stopped ? RecoveryResult::Stopped : RecoveryResult::Ran;
+      }
+      case Recovery::Recentre: {  // from the best iterate at a larger barrier parameter
+        if (!st.recentre || best_iterate_.x.size() == 0) return RecoveryResult::NotApplicable;
+        this->it_ = best_iterate_;
+        recentre(this->it_, 1e4);
+        EngineRun safe = opt;
+        safe.step.sigma_max = std::min(st.sigma_max, 0.3);
+        safe.step.step_fraction = std::min(st.step_fraction, 0.9);
+        safe.slow_below = st.polish ? st.polish_below : 0.0;
+        const IpmReport rep = run("re-centred NIPM", safe, clock);
+        polish_best(clock);
+        return rep.exit == IpmExit::Stopped ? RecoveryResult::Stopped : RecoveryResult::Ran;
+      }
+      case Recovery::Aclm: return aclm_from_best(clock);
+    }
+    return RecoveryResult::NotApplicable;
+  }
+
+  /// Step 4: the ACLM Newton loop from the best point's s = ||u_T||.
+  RecoveryResult aclm_from_best(const Stopwatch& clock) {
+    AclmSettings as;
+    static_cast<IpmSettings&>(as) = static_cast<const IpmSettings&>(settings_);
+    as.sigma_max = 1.0;
+    as.max_iter = remaining();
+    as.max_time = settings_.max_time - clock.seconds();
+    as.record_history = false;
+    as.callback = IterationCallback();
+    AclmSolver<Form> aclm(as);
+    aclm.compute(this->form_->view());
+    aclm.set_initial_s(tangential_speeds_of_best());
+    Vector rr = Vector::Zero(this->best_.r.size()), ww(this->best_.w.size());
+    const SolverInfo& ai = aclm.solve(rr, ww);
+    total_ += ai.iterations;
+    this->stats_.factorizations += aclm.statistics().factorizations;
+    this->stats_.factor_seconds += aclm.statistics().factor_seconds;
+    this->add_to_message("fallback " + aclm.summary());
+    consider_iterate(rr, ww, ai.error);
+    return RecoveryResult::Ran;
+  }
+
+  /// A candidate (r, w) and, when it is the best so far, the iterate behind
+  /// it (for the re-centring).
+  void consider_iterate(const Vector& r, const Vector& w, double error) {
+    if (this->consider(r, w, error)) best_iterate_ = this->it_;
   }
 
   /// Pushes every block back into int L so that x^T y grows by ~factor.
@@ -200,28 +201,25 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     InteriorPoint<Form>::push_inside(it, t * xs, t * ys);
   }
 
-  /// s_a = ||u_T^a|| of (r, w) (u = H^T v + w for the global form).
-  Vector tangential_speeds(const Vector& r, const Vector& w) const {
-    Vector u;
-    if constexpr (Form::is_global) u = this->form_->view().H.transpose() * w + this->form_->view().w;
-    else u = w;
-    (void)r;
+  /// s_a = ||u_T^a|| of the best point.
+  Vector tangential_speeds_of_best() const {
+    const Vector u = this->velocity_of(this->best_.w);
     Vector s(this->form_->num_contacts());
     for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<N - 1>(a * N + 1).norm();
     return s;
   }
 
   NipmSettings settings_;
-  double best_error_ = 0;
-  Vector best_r_, best_w_;
   Iterate best_iterate_;
-  IpmExit last_exit_ = IpmExit::MaxIterations;
+  int total_ = 0;
+  bool stopped_ = false;
+  IpmExit first_exit_ = IpmExit::MaxIterations, last_exit_ = IpmExit::MaxIterations;
 };
 
-template <int N = 3, class Factorization = SparseKktFactorization<DefaultBackend>>
-using GlobalNipm = NonsmoothIpm<GlobalForm<N, Factorization>>;
-template <int N = 3, class Factorization = SparseKktFactorization<DefaultBackend>>
-using LocalNipm = NonsmoothIpm<LocalForm<N, Factorization>>;
+template <class Cone = Coulomb3D, class Factorization = SparseKktFactorization<DefaultBackend>>
+using GlobalNipm = NonsmoothIpm<GlobalForm<Cone, Factorization>>;
+template <class Cone = Coulomb3D, class Factorization = SparseKktFactorization<DefaultBackend>>
+using LocalNipm = NonsmoothIpm<LocalForm<Cone, Factorization>>;
 
 }  // namespace ipm
 }  // namespace fcsolve

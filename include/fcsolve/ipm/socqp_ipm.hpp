@@ -13,10 +13,10 @@
 // the FCLIB error of the same (r, v) for Coulomb's law, which only a fixed
 // point s = ||u_T|| drives to zero.
 //
-//   fcsolve::ipm::GlobalSocqpIpm<3> ipm;   // or LocalSocqpIpm<3>
+//   fcsolve::ipm::GlobalSocqpIpm<Coulomb3D> ipm;   // or LocalSocqpIpm<Coulomb3D>
 //   ipm.compute(problem);                  // validates, builds the KKT pattern
-//   Vector r, v;
-//   SolverInfo info = ipm.solve(r, v);     // v: velocities (u for the local form)
+//   Vector r = Vector::Zero(problem.size()), v(problem.num_dofs());
+//   const SolverInfo& info = ipm.solve(r, v);  // r: warm start in; v: velocities (u, local form)
 #pragma once
 
 #include <fcsolve/ipm/global_form.hpp>
@@ -37,8 +37,8 @@ class SocqpIpm : public IpmSolverBase<Form> {
   IpmSettings& settings() { return settings_; }
   const IpmSettings& settings() const { return settings_; }
 
-  template <class View>
-  SocqpIpm& compute(const View& p) {
+  /// Validates the problem, builds the form (KKT pattern, scaling).
+  SocqpIpm& compute(const typename Form::View& p) {
     this->compute_form(p);
     s_.setZero(p.num_contacts());
     return *this;
@@ -54,57 +54,17 @@ class SocqpIpm : public IpmSolverBase<Form> {
     return *this;
   }
 
-  /// Solves the frozen-s problem: r the reactions, w the velocities v
-  /// (global form) or u = W r + q (local form).
-  SolverInfo solve(Vector& r, Vector& w) {
+  /// Solves the frozen-s problem from the warm start r (ipm_solver_base.hpp,
+  /// try_warm_start): r the reactions, w the velocities v (global form) or
+  /// u = W r + q (local form).
+  const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> w) {
     Stopwatch clock;
-    SolverInfo& info = this->begin_solve();
-    Iterate& it = this->it_;
-    it.s = s_;
-    this->engine_->cold_start(it, false);
-    const IpmSettings& st = settings_;
-    IpmOptions opt = this->engine_options(st, false, st.tol, st.max_iter, st.max_time);
-    IpmReport rep = this->run_engine(it, opt);
-    info.iterations = rep.iterations;
-    info.history = rep.history;
-    info.message = this->describe("IPM", rep);
-    this->extract(it, r, w);
-    double error = rep.error;
-    if (error > st.tol && st.polish) {
-      PolishResult pr = this->polish(st, r, w, &s_, st.tol, st.max_time - clock.seconds());
-      info.message += "; " + this->describe_polish(pr);
-      if (pr.error > st.tol && rep.exit == IpmExit::SlowProgress &&
-          info.iterations < st.max_iter) {
-        // The polish could not finish from there: let the IPM go on.
-        opt.slow_below = 0;
-        opt.max_iter = st.max_iter - info.iterations;
-        opt.iteration_offset = info.iterations;
-        opt.seconds_offset = clock.seconds();
-        opt.max_time = st.max_time - clock.seconds();
-        const IpmReport more = this->run_engine(it, opt);
-        info.iterations += more.iterations;
-        info.history.insert(info.history.end(), more.history.begin(), more.history.end());
-        info.message += "; " + this->describe("IPM resumed", more);
-        rep = more;
-        Vector r2, w2;
-        this->extract(it, r2, w2);
-        PolishResult pr2 = this->polish(st, r2, w2, &s_, st.tol, st.max_time - clock.seconds());
-        info.message += "; " + this->describe_polish(pr2);
-        if (pr2.error < pr.error) {
-          r = r2;
-          w = w2;
-          pr = pr2;
-        }
-      }
-      error = std::min(error, pr.error);
-    }
-    info.error = error;
-    coulomb_error_ = this->fclib_error(r, w);
+    SolverInfo& info = this->begin_solve(r, w);
+    IpmExit exit = IpmExit::Converged;
+    if (!this->try_warm_start(r, settings_, &s_, settings_.max_time)) exit = run_and_polish(clock);
+    coulomb_error_ = this->fclib_error(this->best_.r, this->best_.w);
     info.message += "; Coulomb (FCLIB) error of this point " + format_number(coulomb_error_);
-    info.status = error <= st.tol ? Status::Converged : this->status_of(rep.exit);
-    if (info.status == Status::Converged) info.message = "converged; " + info.message;
-    info.solve_seconds = clock.seconds();
-    return info;
+    return this->finish(r, w, settings_.tol, this->status_of(exit), clock);
   }
 
   /// FCLIB error of the last solution for Coulomb's law (not what this
@@ -112,15 +72,55 @@ class SocqpIpm : public IpmSolverBase<Form> {
   double coulomb_error() const { return coulomb_error_; }
 
  private:
+  /// The IPM from its cold start, then the polish; when the polish cannot
+  /// finish from where the IPM slowed down, the IPM resumed and the polish
+  /// again. Returns how the (last) IPM run ended.
+  IpmExit run_and_polish(const Stopwatch& clock) {
+    SolverInfo& info = this->info_;
+    const IpmSettings& st = settings_;
+    Iterate& it = this->it_;
+    it.s = s_;
+    this->engine_->cold_start(it, false);
+    EngineRun opt = this->engine_run(st, false, st.tol, st.max_iter, st.max_time);
+    const IpmReport rep = this->run_engine(it, opt);
+    info.iterations = rep.iterations;
+    info.history = rep.history;
+    this->add_to_message(this->describe("IPM", rep));
+    Vector r, w;
+    this->extract(it, r, w);
+    this->consider(r, w, rep.error);
+    if (rep.error <= st.tol || !st.polish) return rep.exit;
+    const PolishResult pr = this->polish(st, r, w, &s_, st.tol, st.max_time - clock.seconds());
+    this->add_to_message(this->describe_polish(pr));
+    this->consider(r, w, pr.error);
+    if (pr.error <= st.tol || rep.exit != IpmExit::SlowProgress || info.iterations >= st.max_iter)
+      return rep.exit;
+    // The polish could not finish from there: let the IPM go on.
+    opt.slow_below = 0;
+    opt.max_iter = st.max_iter - info.iterations;
+    opt.iteration_offset = info.iterations;
+    opt.seconds_offset = clock.seconds();
+    opt.max_time = st.max_time - clock.seconds();
+    const IpmReport more = this->run_engine(it, opt);
+    info.iterations += more.iterations;
+    info.history.insert(info.history.end(), more.history.begin(), more.history.end());
+    this->add_to_message(this->describe("IPM resumed", more));
+    this->extract(it, r, w);
+    const PolishResult again = this->polish(st, r, w, &s_, st.tol, st.max_time - clock.seconds());
+    this->add_to_message(this->describe_polish(again));
+    this->consider(r, w, again.error);
+    return more.exit;
+  }
+
   IpmSettings settings_;
   Vector s_;
   double coulomb_error_ = 0;
 };
 
-template <int N = 3, class Factorization = SparseKktFactorization<DefaultBackend>>
-using GlobalSocqpIpm = SocqpIpm<GlobalForm<N, Factorization>>;
-template <int N = 3, class Factorization = SparseKktFactorization<DefaultBackend>>
-using LocalSocqpIpm = SocqpIpm<LocalForm<N, Factorization>>;
+template <class Cone = Coulomb3D, class Factorization = SparseKktFactorization<DefaultBackend>>
+using GlobalSocqpIpm = SocqpIpm<GlobalForm<Cone, Factorization>>;
+template <class Cone = Coulomb3D, class Factorization = SparseKktFactorization<DefaultBackend>>
+using LocalSocqpIpm = SocqpIpm<LocalForm<Cone, Factorization>>;
 
 }  // namespace ipm
 }  // namespace fcsolve

@@ -6,6 +6,7 @@
 #include <fcsolve/core/error.hpp>
 #include <fcsolve/nipm.hpp>
 #include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/solvers/dispatch.hpp>
 #include <fcsolve/solvers/registry.hpp>
 
@@ -76,32 +77,25 @@ S ipm_settings_from(const SolveRequest& req) {
   return s;
 }
 
-/// ACLM warm start: s = ||u_T|| of the given r (and v).
-template <int N, class View>
-Vector initial_speeds(const View& p, const SolveRequest& req) {
-  Vector u;
-  if constexpr (std::is_same_v<View, GlobalProblemView>) {
-    if (req.v0.size() == 0) return Vector();
-    u = p.H.transpose() * req.v0 + p.w;
-  } else {
-    if (req.r0.size() == 0) return Vector();
-    u = p.W * req.r0 + p.q;
-  }
-  Vector s(p.num_contacts());
-  for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<N - 1>(a * N + 1).norm();
-  return s;
-}
-
-/// Runs the solver of `kind` on form Form; returns r and w (v or u).
+/// Runs the solver of `kind` on form Form from the request's warm start r0
+/// (zero when absent); returns r and w (v or u). ipm-socqp solves the
+/// associated law (s = 0), not the Coulomb problem: it claims convergence
+/// only when the Coulomb (FCLIB) error of its point is within tol, so that
+/// the registry's re-check never has to take a claim back.
 template <class Form, class View>
 SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, Vector& r, Vector& w) {
-  constexpr int N = Form::dim;
+  r = initial_reactions(req, p.size());
+  if constexpr (Form::is_global) w.setZero(p.num_dofs());
+  else w.setZero(p.size());
   if (kind == IpmKind::Socqp) {
     ipm::SocqpIpm<Form> solver(ipm_settings_from<ipm::IpmSettings>(req));
-    solver.compute(p);
-    SolverInfo info = solver.solve(r, w);
-    // The registry judges the Coulomb (FCLIB) error: say what was solved.
+    SolverInfo info = solver.compute(p).solve(r, w);
     info.message = "associated problem (s = 0) " + info.message;
+    if (info.converged() && !(solver.coulomb_error() <= req.common.tol)) {
+      info.status = Status::Stalled;
+      info.message += "; the associated problem's solution has Coulomb (FCLIB) error " +
+                      ipm::format_number(solver.coulomb_error()) + " > tol";
+    }
     return info;
   }
   if (kind == IpmKind::Nipm) {
@@ -109,18 +103,14 @@ SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, Vector&
     s.recover = req.settings.boolean("recover");
     s.recentre = req.settings.boolean("recentre");
     ipm::NonsmoothIpm<Form> solver(s);
-    solver.compute(p);
-    return solver.solve(r, w);
+    return solver.compute(p).solve(r, w);
   }
   auto s = ipm_settings_from<ipm::AclmSettings>(req);
   s.variant = kind == IpmKind::AclmNewton ? ipm::AclmVariant::Newton : ipm::AclmVariant::FixedPoint;
   s.max_outer = int(req.settings.integer("max_outer"));
   s.inner_ratio = req.settings.real("inner_ratio");
   ipm::AclmSolver<Form> solver(s);
-  solver.compute(p);
-  const Vector s0 = initial_speeds<N>(p, req);
-  if (s0.size()) solver.set_initial_s(s0);
-  return solver.solve(r, w);
+  return solver.compute(p).solve(r, w);
 }
 
 inline void require_friction(int d) {
@@ -129,72 +119,28 @@ inline void require_friction(int d) {
                      std::to_string(d));
 }
 
-/// An interior point starts from the centre of the cones, not from a given
-/// point: a warm start that already meets tol is returned as it is (no
-/// iteration), so that restarting from a solution costs one error evaluation.
-inline bool accept_warm_start(const LocalProblemView& p, const SolveRequest& req, SolveOutcome& out) {
-  if (req.r0.size() != p.size()) return false;
-  const Vector u = p.W * req.r0 + p.q;
-  const double error = local_error_report(p, req.r0, u).error;
-  if (!(error <= req.common.tol)) return false;
-  out.r = req.r0;
-  out.u = u;
-  out.info.status = Status::Converged;
-  out.info.error = error;
-  out.info.message = "the warm start meets tol";
-  return true;
-}
-
-inline bool accept_warm_start(const GlobalProblemView& p, const SolveRequest& req, SolveOutcome& out) {
-  if (req.r0.size() != p.size() || req.v0.size() != p.num_dofs() || p.has_bilateral()) return false;
-  const double q_norm = GlobalReduction<DefaultBackend>(p, /*form_W=*/false).free_velocity_norm();
-  const double error = global_error_report(p, q_norm, req.r0, req.v0).error;
-  if (!(error <= req.common.tol)) return false;
-  out.r = req.r0;
-  out.v = req.v0;
-  out.info.status = Status::Converged;
-  out.info.error = error;
-  out.info.message = "the warm start meets tol";
-  return true;
-}
-
-/// ipm-socqp solves the associated law (s = 0): its own convergence is not
-/// the Coulomb problem's. Claim it only when the Coulomb (FCLIB) error of
-/// the point is within tol, so that the registry's re-check never has to
-/// take a claim back.
-template <class View>
-void judge_associated_solution(const View& p, const SolveRequest& req, SolveOutcome& out) {
-  if (!out.info.converged()) return;
-  double error;
-  if constexpr (std::is_same_v<View, LocalProblemView>) {
-    error = local_error(p, out.r);
-  } else {
-    const double q_norm = GlobalReduction<DefaultBackend>(p, /*form_W=*/false).free_velocity_norm();
-    error = global_error_report(p, q_norm, out.r, out.v).error;
-  }
-  if (error <= req.common.tol) return;
-  out.info.status = Status::Stalled;
-  out.info.message += "; the associated problem's solution has Coulomb (FCLIB) error " +
-                      ipm::format_number(error) + " > tol";
-}
-
 template <class T>
 struct TypeTag {
   using type = T;
 };
 
 /// The catalogue's dispatch (solvers/dispatch.hpp) for the interior-point
-/// forms: f(TypeTag<Form<N, Factorization>>{}), N the friction cone's
-/// dimension (d = 2 or 3, require_friction()), a dense KKT factorisation
-/// for small systems.
-template <template <int, class> class Form, class F>
+/// forms: f(TypeTag<Form<Cone, Factorization>>{}) for the friction cones
+/// (d = 2 or 3, require_friction()), a dense KKT factorisation for small
+/// systems.
+template <template <class, class> class Form, class F>
 void dispatch_ipm_form(int d, bool dense, F&& f) {
   dispatch_cone_and_density(d, dense, [&](auto cone, auto is_dense) {
-    constexpr int N = decltype(cone)::dim;
-    if constexpr (N > 1) {
+    using Cone = decltype(cone);
+    if constexpr (Cone::dim > 1) {
       using Factorization = std::conditional_t<decltype(is_dense)::value, ipm::DenseKktFactorization,
                                                ipm::SparseKktFactorization<DefaultBackend>>;
-      f(TypeTag<Form<N, Factorization>>{});
+      using FormType = Form<Cone, Factorization>;
+      using View = typename FormType::View;
+      static_assert(satisfies_solver_contract_v<ipm::SocqpIpm<FormType>, View> &&
+                    satisfies_solver_contract_v<ipm::AclmSolver<FormType>, View> &&
+                    satisfies_solver_contract_v<ipm::NonsmoothIpm<FormType>, View>);
+      f(TypeTag<FormType>{});
     }
   });
 }
@@ -203,11 +149,9 @@ inline LocalSolveFunction ipm_local(IpmKind kind) {
   return [kind](const LocalProblemView& p, const SolveRequest& req) {
     require_friction(p.d);
     SolveOutcome out;
-    if (accept_warm_start(p, req, out)) return out;
     dispatch_ipm_form<ipm::LocalForm>(p.d, p.size() <= kDenseKktMaxSize, [&](auto form) {
       out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out.r, out.u);
     });
-    if (kind == IpmKind::Socqp) judge_associated_solution(p, req, out);
     return out;
   };
 }
@@ -216,7 +160,6 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
   return [kind](const GlobalProblemView& p, const SolveRequest& req) {
     require_friction(p.d);
     SolveOutcome out;
-    if (accept_warm_start(p, req, out)) return out;
     if (p.has_bilateral())  // the global form has no (G, b)
       return solve_bilateral_by_reduction(p, [&](const LocalProblemView& reduced) {
         return ipm_local(kind)(reduced, req);
@@ -225,7 +168,6 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
     dispatch_ipm_form<ipm::GlobalForm>(p.d, dense, [&](auto form) {
       out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out.r, out.v);
     });
-    if (kind == IpmKind::Socqp) judge_associated_solution(p, req, out);
     return out;
   };
 }
