@@ -6,6 +6,7 @@
 #include "test_support.hpp"
 
 #include <fcsolve/core/error.hpp>
+#include <fcsolve/local/alart_curnier_backtracking.hpp>
 #include <fcsolve/nsgs.hpp>
 #include <fcsolve/solvers/catalog.hpp>
 
@@ -130,6 +131,43 @@ TEST_CASE("nsgs gives the same iterates with every storage", "[nsgs][storage]") 
     const Vector rd = solve_with(dense, p), rb = solve_with(block, p), rs = solve_with(sparse, p);
     CHECK((rd - rb).norm() <= 1e-8 * std::max(1.0, rb.norm()));
     CHECK((rs - rb).norm() <= 1e-8 * std::max(1.0, rb.norm()));
+  }
+}
+
+TEST_CASE("Nsgs::sweep on the caller's iterate (the hybrid Newton's fallback)", "[nsgs]") {
+  using Local = local::AlartCurnierBacktracking<Coulomb3D>;
+  NsgsSettings<Local::Settings> settings;
+  settings.freezing = 0;
+  SECTION("one sweep solves the decoupled problem, u = W r + q kept") {
+    const LocalProblem p = decoupled_problem();
+    Nsgs<Coulomb3D, SparseStorage<3>, Local> nsgs(settings);
+    nsgs.compute(p);
+    Vector r = Vector::Zero(p.size()), u = p.q;
+    nsgs.sweep(r, u);
+    Vector expected(12);
+    expected << 0, 0, 0, 1, -0.1, -0.1, 1, -0.5, 0, 1, 0, 0.5;
+    CHECK((r - expected).norm() <= 1e-12);
+    CHECK((u - (p.W * r + p.q)).norm() <= 1e-12);
+  }
+  SECTION("row access and column updates give the same sweeps on FCLIB problems") {
+    for (const auto& f : fcsolve_test::fclib_files("local")) {
+      const LocalProblem p = fclib::read_local(f);
+      if (p.num_contacts() > 200) continue;
+      INFO(name_of(f));
+      Nsgs<Coulomb3D, SparseStorage<3>, Local> columns(settings);
+      Nsgs<Coulomb3D, BlockSparseStorage<3>, Local> rows(settings);
+      columns.compute(p);
+      rows.compute(p);
+      Vector rc = Vector::Zero(p.size()), uc = p.q, rr = rc, ur = uc;
+      for (int k = 0; k < 20; ++k) {
+        columns.sweep(rc, uc);
+        rows.sweep(rr, ur);
+      }
+      CHECK((rc - rr).norm() <= 1e-8 * std::max(1.0, rr.norm()));
+      CHECK((uc - (p.W * rc + p.q)).norm() <= 1e-8 * std::max(1.0, uc.norm()));
+      CHECK((ur - (p.W * rr + p.q)).norm() <= 1e-10 * std::max(1.0, ur.norm()));
+      CHECK(local_error(p, rr) < local_error(p, Vector::Zero(p.size())));
+    }
   }
 }
 

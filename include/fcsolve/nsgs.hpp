@@ -9,10 +9,12 @@
 //
 // The third template argument picks the local (one-contact) solver:
 // local::Projection, local::ProjectionIterative, local::Enumerative,
-// local::AlartCurnierNewton, local::FischerBurmeisterNewton, local::Hybrid.
+// local::AlartCurnierNewton, local::FischerBurmeisterNewton, local::Hybrid,
+// local::AlartCurnierBacktracking (the hybrid Newton's fallback).
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
+#include <fcsolve/local/alart_curnier_backtracking.hpp>
 #include <fcsolve/local/alart_curnier_newton.hpp>
 #include <fcsolve/local/enumerative.hpp>
 #include <fcsolve/local/fischer_burmeister_newton.hpp>

@@ -3,18 +3,24 @@
 // stops them (NT scalings of points 1e-12 from the boundary), or where they
 // solved the symmetric part of W or M, or at a "fake solution"; this polish
 // takes the last digits (quadratic convergence once the contact states are
-// identified). Global form, unknowns (v, r):
+// identified). It is the Newton family's iteration on one more formulation:
+// global form, unknowns (v, r):
 //   F = [ M v - H r - f ; Phi(r, H^T v + w) ],
 //   J = [ M  -H ; A H^T  B ],   dPhi_a = A_a du_a + B_a dr_a,
-// local form, unknown r: F = Phi(r, W r + q), J = A W + B. Phi is the natural
-// map of core/error.hpp (rho = 1: its norm is the FCLIB error) through
-// formulation/natural_map.hpp, or, with s frozen, r - P_K(r - u - (mu s, 0)).
-// Steps are damped by backtracking on the squared scaled residual; the polish
-// only ever returns a point at least as good as the one it was given, and
-// starts no step after `max_seconds` (the caller's time budget). B gets
-// a tiny diagonal shift (kJacobianShift): a sticking contact has B_a = 0, and
-// with a rank-deficient H the Jacobian would be singular (the reactions are
-// not unique); the shift picks a small-norm step among them.
+// assembled by newton/global_jacobian.hpp; local form, unknown r:
+// F = Phi(r, W r + q), J = A W + B, assembled by newton/reduced_jacobian.hpp.
+// Phi is the natural map of core/error.hpp (rho = 1: its norm is the FCLIB
+// error) through formulation/natural_map.hpp, or, with s frozen,
+// r - P_K(r - u - (mu s, 0)).
+// Steps are damped by the Armijo backtracking of newton/line_search.hpp on
+// the squared scaled residual (monotone: the polish only ever returns a
+// point at least as good as the one it was given), and no step starts after
+// `max_seconds` (the caller's time budget). It keeps its own short loop
+// rather than newton/newton_loop.hpp: its merit includes the equilibrium
+// rows, it has no stall restarts, and it stops at the caller's target. B
+// gets a tiny diagonal shift (kJacobianShift): a sticking contact has
+// B_a = 0, and with a rank-deficient H the Jacobian would be singular (the
+// reactions are not unique); the shift picks a small-norm step among them.
 #pragma once
 
 #include <fcsolve/core/error.hpp>
@@ -22,6 +28,9 @@
 #include <fcsolve/formulation/natural_map.hpp>
 #include <fcsolve/ipm/form_common.hpp>
 #include <fcsolve/ipm/kkt_factorization.hpp>
+#include <fcsolve/newton/global_jacobian.hpp>
+#include <fcsolve/newton/line_search.hpp>
+#include <fcsolve/newton/reduced_jacobian.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 
@@ -29,7 +38,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 namespace fcsolve {
 namespace ipm {
@@ -44,39 +52,45 @@ inline constexpr double kJacobianShift = 1e-10;
 
 namespace detail {
 
-/// Phi_a for every contact, and (A_a, B_a) when `A`, `B` are given;
-/// `frozen` null: the Coulomb natural map, else u~ = u + (mu s, 0).
+template <int N>
+using JacobianBlocks = typename ReducedJacobian<N>::BlockList;
+
+/// Phi_a for every contact, and (A_a, B_a + kJacobianShift I) when `A`, `B`
+/// are given; `frozen` null: the Coulomb natural map, else u~ = u + (mu s, 0).
 template <int N>
 void natural_map_blocks(const Vector& r, const Vector& u, const Eigen::Ref<const Vector>& mu,
-                        const Vector* frozen, Vector& phi, std::vector<Mat<N>>* A,
-                        std::vector<Mat<N>>* B) {
+                        const Vector* frozen, Vector& phi, JacobianBlocks<N>* A,
+                        JacobianBlocks<N>* B) {
   using Cone = CoulombCone<N>;
-  const Vec<N> rho = Vec<N>::Ones();
+  using V = SmallVector<N>;
+  using M = SmallMatrix<N>;
+  const V rho = V::Ones();
   for (Index a = 0; a < mu.size(); ++a) {
-    const Vec<N> ra = r.template segment<N>(a * N), ua = u.template segment<N>(a * N);
-    Vec<N> G;
+    const V ra = r.template segment<N>(a * N), ua = u.template segment<N>(a * N);
+    V G;
     if (!frozen) {
       if (A) NaturalMapFunction<Cone>::value_and_jacobian(ra, ua, mu[a], rho, G, (*A)[std::size_t(a)],
                                                           (*B)[std::size_t(a)]);
       else G = NaturalMapFunction<Cone>::value(ra, ua, mu[a], rho);
     } else {
-      Vec<N> z = ra - ua;
+      V z = ra - ua;
       z[0] -= mu[a] * (*frozen)[a];
       G = ra - Cone::project(z, mu[a]);
       if (A) {
-        const Mat<N> J = coulomb_projection_jacobian<N>(z, mu[a]);
+        const M J = coulomb_projection_jacobian<N>(z, mu[a]);
         (*A)[std::size_t(a)] = J;
-        (*B)[std::size_t(a)] = Mat<N>::Identity() - J;
+        (*B)[std::size_t(a)] = M::Identity() - J;
       }
     }
+    if (B) (*B)[std::size_t(a)].diagonal().array() += kJacobianShift;
     phi.template segment<N>(a * N) = G;
   }
 }
 
 /// J dz = b for the successive Jacobians of one polish: dense LU for small
 /// systems, else the backend's sparse LU with the symbolic analysis of the
-/// first Jacobian reused (every Jacobian has the same pattern: all N x N
-/// blocks are stored, zeros included).
+/// first Jacobian reused (every Jacobian has the pattern fixed by the
+/// assembly: all N x N blocks are stored, zeros included).
 template <class Backend>
 class JacobianSolver {
  public:
@@ -86,22 +100,168 @@ class JacobianSolver {
       x = Eigen::PartialPivLU<DenseMatrix>(dense).solve(b);
       return x.allFinite();
     }
-    J_ = J;  // the LU reads it again at solve time
     if (!analysed_) {
       KktSolvers<Backend>::configure(lu_);
-      lu_.analyzePattern(J_);
+      lu_.analyzePattern(J);
       analysed_ = true;
     }
-    lu_.factorize(J_);
+    lu_.factorize(J);  // J stays alive and unchanged until the solve (UMFPACK)
     if (lu_.info() != Eigen::Success) return false;
     x = lu_.solve(b);
     return x.allFinite();
   }
 
  private:
-  SparseMatrix J_;
   typename Backend::GeneralSolver lu_;
   bool analysed_ = false;
+};
+
+/// Armijo backtracking psi(t) <= (1 - 1e-4 t) psi(0), t = 1, 1/2, ... (30 trials).
+inline NewtonSettings polish_line_search() {
+  NewtonSettings s;
+  s.line_search = LineSearch::Armijo;
+  s.sigma = 0.5e-4;
+  s.max_line_search = 30;
+  s.min_step = 0;
+  return s;
+}
+
+/// The damped Newton iteration of both forms. Form provides
+///   double evaluate(double& error)          merit (and Jacobian) at the iterate
+///   double trial(double t, double& error)   merit at z + t dz
+///   bool direction()                        solves J dz = -F
+///   void take(double t)                     z <- z + t dz
+template <class Form>
+PolishResult newton_polish(Form& form, const Stopwatch& clock, double target, int max_iter,
+                           double max_seconds) {
+  PolishResult res;
+  double error = 0, trial_error = 0;
+  double merit = form.evaluate(error);
+  res.initial_error = res.error = error;
+  const NewtonSettings search = polish_line_search();
+  for (int k = 0; k < max_iter && error > target && clock.seconds() < max_seconds; ++k) {
+    if (!form.direction()) break;
+    const LineSearchResult ls =
+        line_search(search, merit, [&](double t) { return form.trial(t, trial_error); }, merit);
+    if (!ls.accepted) break;
+    form.take(ls.step);
+    merit = form.evaluate(error);
+    res.iterations = k + 1;
+    res.error = error;
+  }
+  return res;
+}
+
+/// FC/I in (v, r): merit (e1^2 + e2^2), error max(e1, e2) with e1 the
+/// scaled equilibrium residual and e2 = ||Phi|| / ||q||, as core/error.hpp.
+template <int N, class Backend>
+class GlobalPolish {
+ public:
+  GlobalPolish(const GlobalProblemView& p, double q_norm, Vector& v, Vector& r, const Vector* frozen)
+      : p_(p), v_(v), r_(r), frozen_(frozen), n_(p.num_dofs()), m_(p.size()) {
+    q_scale_ = q_norm > 0 ? q_norm : 1.0;
+    f_norm_ = p.f.norm();
+    A_.resize(std::size_t(p.num_contacts()));
+    B_.resize(std::size_t(p.num_contacts()));
+    for (Vector* x : {&phi_, &u_, &Hr_, &r_try_}) x->resize(m_);
+    for (Vector* x : {&Mv_, &v_try_}) x->resize(n_);
+    F_.resize(n_ + m_);
+    dz_.resize(n_ + m_);
+  }
+
+  double evaluate(double& error) { return residual(v_, r_, true, error); }
+  double trial(double t, double& error) {
+    v_try_ = v_ + t * dz_.head(n_);
+    r_try_ = r_ + t * dz_.tail(m_);
+    return residual(v_try_, r_try_, false, error);
+  }
+  bool direction() {
+    if (J_.size() == 0) {  // the pattern, at the first step only
+      jacobian_.compute(p_.M, p_.H);
+      jacobian_.initialise(J_);
+    }
+    jacobian_.assemble(A_, B_, J_);
+    rhs_ = -F_;
+    return linear_.solve(J_, rhs_, dz_);
+  }
+  void take(double t) {
+    v_ += t * dz_.head(n_);
+    r_ += t * dz_.tail(m_);
+  }
+
+ private:
+  double residual(const Vector& v, const Vector& r, bool jacobian, double& error) {
+    u_.noalias() = p_.H.transpose() * v;
+    u_ += p_.w;
+    natural_map_blocks<N>(r, u_, p_.mu, frozen_, phi_, jacobian ? &A_ : nullptr, jacobian ? &B_ : nullptr);
+    Mv_.noalias() = p_.M * v;
+    Hr_.noalias() = p_.H * r;
+    F_.head(n_) = Mv_ - Hr_ - p_.f;
+    F_.tail(m_) = phi_;
+    const double s1 = std::max({f_norm_, Mv_.norm(), Hr_.norm()});
+    const double e1 = F_.head(n_).norm() / (s1 > 0 ? s1 : 1.0), e2 = phi_.norm() / q_scale_;
+    error = std::max(e1, e2);
+    return e1 * e1 + e2 * e2;
+  }
+
+  const GlobalProblemView& p_;
+  Vector& v_;
+  Vector& r_;
+  const Vector* frozen_;
+  Index n_, m_;
+  double q_scale_ = 1, f_norm_ = 0;
+  GlobalJacobian<N> jacobian_;
+  SparseMatrix J_;
+  JacobianSolver<Backend> linear_;
+  JacobianBlocks<N> A_, B_;
+  Vector phi_, u_, Mv_, Hr_, F_, rhs_, dz_, v_try_, r_try_;
+};
+
+/// FC/II in r: merit error^2, error ||Phi|| / ||q||.
+template <int N, class Backend>
+class LocalPolish {
+ public:
+  LocalPolish(const LocalProblemView& p, Vector& r, const Vector* frozen)
+      : p_(p), r_(r), frozen_(frozen), q_scale_(p.q.norm() > 0 ? p.q.norm() : 1.0) {
+    A_.resize(std::size_t(p.num_contacts()));
+    B_.resize(std::size_t(p.num_contacts()));
+    for (Vector* x : {&phi_, &u_, &dr_, &r_try_}) x->resize(p.size());
+  }
+
+  double evaluate(double& error) { return residual(r_, true, error); }
+  double trial(double t, double& error) {
+    r_try_ = r_ + t * dr_;
+    return residual(r_try_, false, error);
+  }
+  bool direction() {
+    if (J_.size() == 0) {  // the pattern, at the first step only
+      jacobian_.compute(p_.W);
+      jacobian_.initialise(J_);
+    }
+    jacobian_.assemble(A_, B_, J_);
+    rhs_ = -phi_;
+    return linear_.solve(J_, rhs_, dr_);
+  }
+  void take(double t) { r_ += t * dr_; }
+
+ private:
+  double residual(const Vector& r, bool jacobian, double& error) {
+    u_.noalias() = p_.W * r;
+    u_ += p_.q;
+    natural_map_blocks<N>(r, u_, p_.mu, frozen_, phi_, jacobian ? &A_ : nullptr, jacobian ? &B_ : nullptr);
+    error = phi_.norm() / q_scale_;
+    return error * error;
+  }
+
+  const LocalProblemView& p_;
+  Vector& r_;
+  const Vector* frozen_;
+  double q_scale_;
+  ReducedJacobian<N> jacobian_;
+  SparseMatrix J_;
+  JacobianSolver<Backend> linear_;
+  JacobianBlocks<N> A_, B_;
+  Vector phi_, u_, rhs_, dr_, r_try_;
 };
 
 }  // namespace detail
@@ -111,75 +271,8 @@ template <int N, class Backend>
 PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v, Vector& r,
                            const Vector* frozen, double target, int max_iter, double max_seconds) {
   Stopwatch clock;
-  const Index n = p.num_dofs(), m = p.size(), nc = p.num_contacts();
-  const double qs = q_norm > 0 ? q_norm : 1.0;
-  std::vector<Mat<N>> A(static_cast<std::size_t>(nc)), B(static_cast<std::size_t>(nc));
-  Vector phi(m), u(m), F(n + m), dz(n + m);
-  // Scaled residual and the error of core/error.hpp at (v, r).
-  auto evaluate = [&](const Vector& vv, const Vector& rr, bool jacobian, double& error) {
-    u.noalias() = p.H.transpose() * vv;
-    u += p.w;
-    detail::natural_map_blocks<N>(rr, u, p.mu, frozen, phi, jacobian ? &A : nullptr,
-                                  jacobian ? &B : nullptr);
-    const Vector Mv = p.M * vv, Hr = p.H * rr;
-    F.head(n) = Mv - Hr - p.f;
-    F.tail(m) = phi;
-    const double s1 = std::max({p.f.norm(), Mv.norm(), Hr.norm()});
-    const double e1 = F.head(n).norm() / (s1 > 0 ? s1 : 1.0), e2 = phi.norm() / qs;
-    error = std::max(e1, e2);
-    return e1 * e1 + e2 * e2;
-  };
-  PolishResult res;
-  detail::JacobianSolver<Backend> linear;
-  double error;
-  double merit = evaluate(v, r, true, error);
-  res.initial_error = res.error = error;
-  std::vector<Eigen::Triplet<double, int>> t;
-  for (int k = 0; k < max_iter && error > target && clock.seconds() < max_seconds; ++k) {
-    t.clear();
-    for (Index j = 0; j < n; ++j)
-      for (SparseMap::InnerIterator it(p.M, j); it; ++it) t.emplace_back(int(it.row()), int(j), it.value());
-    for (Index j = 0; j < m; ++j) {
-      const Index a = j / N;
-      const int k_col = int(j % N);
-      for (SparseMap::InnerIterator it(p.H, j); it; ++it) {
-        t.emplace_back(int(it.row()), int(n + j), -it.value());
-        // (A H^T)(a N + i, dof) = sum_k A(i, k) H(dof, a N + k)
-        for (int i = 0; i < N; ++i)
-          t.emplace_back(int(n + a * N + i), int(it.row()), A[std::size_t(a)](i, k_col) * it.value());
-      }
-    }
-    for (Index a = 0; a < nc; ++a)
-      for (int j = 0; j < N; ++j)
-        for (int i = 0; i < N; ++i)
-          t.emplace_back(int(n + a * N + i), int(n + a * N + j),
-                         B[std::size_t(a)](i, j) + (i == j ? kJacobianShift : 0.0));
-    SparseMatrix J(n + m, n + m);
-    J.setFromTriplets(t.begin(), t.end());
-    J.makeCompressed();
-    const Vector rhs = -F;
-    if (!linear.solve(J, rhs, dz)) break;
-    // Backtracking on the scaled squared residual.
-    double step = 1, trial_error = error, trial_merit = merit;
-    Vector v_try, r_try;
-    bool accepted = false;
-    for (int ls = 0; ls < 30; ++ls, step *= 0.5) {
-      v_try = v + step * dz.head(n);
-      r_try = r + step * dz.tail(m);
-      trial_merit = evaluate(v_try, r_try, false, trial_error);
-      if (trial_merit <= (1 - 1e-4 * step) * merit) {
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;
-    v = v_try;
-    r = r_try;
-    merit = evaluate(v, r, true, error);
-    res.iterations = k + 1;
-    res.error = error;
-  }
-  return res;
+  detail::GlobalPolish<N, Backend> form(p, q_norm, v, r, frozen);
+  return detail::newton_polish(form, clock, target, max_iter, max_seconds);
 }
 
 /// Polishes r of FC/II.
@@ -187,60 +280,8 @@ template <int N, class Backend>
 PolishResult polish_local(const LocalProblemView& p, Vector& r, const Vector* frozen, double target,
                           int max_iter, double max_seconds) {
   Stopwatch clock;
-  const Index m = p.size(), nc = p.num_contacts();
-  const double qs = p.q.norm() > 0 ? p.q.norm() : 1.0;
-  std::vector<Mat<N>> A(static_cast<std::size_t>(nc)), B(static_cast<std::size_t>(nc));
-  Vector phi(m), u(m), dr(m);
-  auto evaluate = [&](const Vector& rr, bool jacobian) {
-    u.noalias() = p.W * rr;
-    u += p.q;
-    detail::natural_map_blocks<N>(rr, u, p.mu, frozen, phi, jacobian ? &A : nullptr,
-                                  jacobian ? &B : nullptr);
-    return phi.norm() / qs;
-  };
-  PolishResult res;
-  detail::JacobianSolver<Backend> linear;
-  double error = evaluate(r, true);
-  res.initial_error = res.error = error;
-  std::vector<Eigen::Triplet<double, int>> t;
-  for (int k = 0; k < max_iter && error > target && clock.seconds() < max_seconds; ++k) {
-    t.clear();
-    // (A W)(a N + i, j) = sum_k A(i, k) W(a N + k, j)
-    for (Index j = 0; j < m; ++j)
-      for (SparseMap::InnerIterator it(p.W, j); it; ++it) {
-        const Index a = it.row() / N;
-        const int kk = int(it.row() % N);
-        for (int i = 0; i < N; ++i)
-          t.emplace_back(int(a * N + i), int(j), A[std::size_t(a)](i, kk) * it.value());
-      }
-    for (Index a = 0; a < nc; ++a)
-      for (int j = 0; j < N; ++j)
-        for (int i = 0; i < N; ++i)
-          t.emplace_back(int(a * N + i), int(a * N + j),
-                         B[std::size_t(a)](i, j) + (i == j ? kJacobianShift : 0.0));
-    SparseMatrix J(m, m);
-    J.setFromTriplets(t.begin(), t.end());
-    J.makeCompressed();
-    const Vector rhs = -phi;
-    if (!linear.solve(J, rhs, dr)) break;
-    double step = 1, trial = error;
-    Vector r_try;
-    bool accepted = false;
-    for (int ls = 0; ls < 30; ++ls, step *= 0.5) {
-      r_try = r + step * dr;
-      trial = evaluate(r_try, false);
-      if (trial * trial <= (1 - 1e-4 * step) * error * error) {
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) break;
-    r = r_try;
-    error = evaluate(r, true);
-    res.iterations = k + 1;
-    res.error = error;
-  }
-  return res;
+  detail::LocalPolish<N, Backend> form(p, r, frozen);
+  return detail::newton_polish(form, clock, target, max_iter, max_seconds);
 }
 
 }  // namespace ipm

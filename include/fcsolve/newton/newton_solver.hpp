@@ -7,19 +7,21 @@
 // Formulation<Cone> is a one-contact function (formulation/*.hpp): G^a and
 // an element (A^a, B^a) of its generalised Jacobian. delta is the
 // Levenberg-Marquardt-like shift of newton_step.hpp (rank-deficient W).
-// With settings.hybrid, a stalled Newton hands over to block Gauss-Seidel
-// sweeps and resumes once the error has dropped (gauss_seidel_fallback.hpp).
+// With settings.hybrid, a stalled Newton hands over to the NSGS sweep
+// (nsgs/nsgs_solver.hpp) with a few local Alart-Curnier steps per contact
+// (local/alart_curnier_backtracking.hpp) and resumes once the error has dropped.
 // Convergence is judged by the FCLIB error of core/error.hpp, never by ||G||.
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
 #include <fcsolve/core/error.hpp>
 #include <fcsolve/formulation/one_contact_function.hpp>
+#include <fcsolve/local/alart_curnier_backtracking.hpp>
 #include <fcsolve/newton/contact_residual.hpp>
-#include <fcsolve/newton/gauss_seidel_fallback.hpp>
 #include <fcsolve/newton/linear_solvers.hpp>
 #include <fcsolve/newton/newton_loop.hpp>
 #include <fcsolve/newton/reduced_jacobian.hpp>
+#include <fcsolve/nsgs/nsgs_solver.hpp>
 #include <fcsolve/problem/validate.hpp>
 #include <fcsolve/storage/storage.hpp>
 
@@ -50,15 +52,13 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
   /// data must outlive the solver.
   Newton& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    validate(p);
     this->check_dimension(p.d, d);
+    sweeps_.compute(p);  // validates p, stores W
     problem_.emplace(p);
-    W_.compute(p.W);
     jacobian_.compute(p.W);
     system_.compute(jacobian_);
-    fallback_.compute(W_);
     residual_.compute(p.mu, settings_.rho_strategy, settings_.rho,
-                      [this](Index a) { return W_.diagonal_block(a); });
+                      [this](Index a) { return W().diagonal_block(a); });
     const Index m = p.size();
     r_.resize(m);
     u_.resize(m);
@@ -106,7 +106,7 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
     update_velocity();
   }
   bool fallback_sweep() {
-    fallback_.sweep(W_, problem_->q, problem_->mu, r_, u_);
+    sweeps_.sweep(r_, u_);
     return true;
   }
 
@@ -120,7 +120,7 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
                        settings_.singular_regularisation, counters_))
       return false;
     FCSOLVE_NO_MALLOC_BEGIN();
-    W_.multiply(dr_, Wd_);
+    W().multiply(dr_, Wd_);
     const double t = this->step_length(psi_, [&](double s) { return residual_.trial(r_, dr_, u_, Wd_, s); });
     if (t > 0) {
       r_ += t * dr_;
@@ -132,15 +132,24 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
   }
 
   void update_velocity() {
-    W_.multiply(r_, u_);
+    W().multiply(r_, u_);
     u_ += problem_->q;
   }
 
+  /// The fallback's Gauss-Seidel sweeps (natural order, no freezing); they
+  /// also hold W, one copy for both.
+  using Sweeps = Nsgs<Cone, Storage, local::AlartCurnierBacktracking<Cone>>;
+  static typename Sweeps::Settings sweep_settings() {
+    typename Sweeps::Settings s;
+    s.freezing = 0;
+    return s;
+  }
+  const Storage& W() const { return sweeps_.storage(); }
+
   std::optional<LocalProblemView> problem_;
-  Storage W_;
+  Sweeps sweeps_{sweep_settings()};
   ReducedJacobian<d> jacobian_;
   RegularisedNewtonSystem<LinearSolver, ReducedJacobian<d>> system_;  // points to jacobian_
-  GaussSeidelFallback<Cone, Storage> fallback_;
   ContactResidual<Function, d> residual_;
   Vector r_, u_, dr_, Wd_, best_r_;
   double psi_ = 0, scale_ = 1, reference_norm_ = 1;

@@ -125,6 +125,24 @@ class Nsgs {
     return *this;
   }
 
+  /// One sweep over the contacts in their natural order from the caller's
+  /// iterate: r in/out, u = W r + q on entry and on exit. The hybrid
+  /// Newton's fallback (newton/newton_solver.hpp) sweeps its own iterate
+  /// with it. Honours omega and freezing; allocates nothing.
+  void sweep(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
+    if (!problem_) throw UsageError("Nsgs::sweep() called before compute()");
+    const LocalProblemView& p = *problem_;
+    if constexpr (!Storage::row_access) u_ = u;
+    SweepResult out;
+    for (Index a = 0; a < p.num_contacts(); ++a) record(a, update_contact(a, r, storage_, p.q, data_), out);
+    if constexpr (Storage::row_access) {
+      storage_.multiply(r, u);
+      u += p.q;
+    } else {
+      u = u_;
+    }
+  }
+
   /// Solves from the warm start r (overwritten by the solution) and writes
   /// u = W r + q. Returns info().
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
@@ -136,20 +154,8 @@ class Nsgs {
     info_.setup_seconds = setup;
     if (s.record_history) info_.history.reserve(std::size_t(std::min(s.max_iter, 100000)) + 1);
 
-    ContactOrdering ordering = s.ordering;
-    std::iota(order_.begin(), order_.end(), Index(0));
-    if (ordering == ContactOrdering::Coloured) {
-      prepare_colouring();
-      std::iota(colour_order_.begin(), colour_order_.end(), Index(0));
-      if constexpr (use_slots) slots_.gather(*colouring_, r);
-      start_threads();
-    } else if (ordering != ContactOrdering::Natural) {
-      rng_.seed(s.seed);
-      std::shuffle(order_.begin(), order_.end(), rng_);
-    }
-    bool reshuffle = ordering == ContactOrdering::ShuffledEachSweep;
-    std::fill(frozen_.begin(), frozen_.end(), 0);
-    local_failures_ = 0;
+    const ContactOrdering ordering = s.ordering;
+    start_ordering(r);
 
     double error = full_error(r);  // also sets u_ = W r + q (column-update storage)
     best_ = r;
@@ -159,16 +165,15 @@ class Nsgs {
 
     const int every = std::max(s.error_every, 1);
     double ratio = 1;  // full error / relative change, at the last full evaluation
-    double progress_error = error;  // stall detection: last 1% improvement
-    int progress_sweep = 0;
+    Progress progress{error, 0, ordering == ContactOrdering::ShuffledEachSweep};
     Status status = Status::MaxIterations;
     for (int sweep_no = 1; sweep_no <= s.max_iter; ++sweep_no) {
       FCSOLVE_NO_MALLOC_BEGIN();
-      if (reshuffle && ordering == ContactOrdering::Coloured)
+      if (progress.reshuffle && ordering == ContactOrdering::Coloured)
         std::shuffle(colour_order_.begin(), colour_order_.end(), rng_);
-      else if (reshuffle)
+      else if (progress.reshuffle)
         std::shuffle(order_.begin(), order_.end(), rng_);
-      const SweepResult sw = ordering == ContactOrdering::Coloured ? coloured_sweep(r) : sweep(r);
+      const SweepResult sw = ordering == ContactOrdering::Coloured ? coloured_sweep(r) : ordered_sweep(r);
       const double change = std::sqrt(sw.change2 / std::max(r.squaredNorm(), 1e-300));
       const bool last = sweep_no == s.max_iter;
       const bool full = sweep_no % every == 0 || change * ratio <= s.tol || last ||
@@ -185,33 +190,9 @@ class Nsgs {
       }
       const double estimate = full ? error : change * ratio;
       if (full) {
-        if (error < best_error_) {
-          best_error_ = error;
-          best_ = r;
-        }
-        if (error <= s.tol) {
-          status = Status::Converged;
-          break;
-        }
-        if (error < 0.99 * progress_error) {
-          progress_error = error;
-          progress_sweep = sweep_no;
-        } else if (s.stall_sweeps > 0 && sweep_no - progress_sweep >= s.stall_sweeps &&
-                   !reshuffle) {
-          if (ordering == ContactOrdering::Natural || ordering == ContactOrdering::Coloured)
-            rng_.seed(s.seed);
-          reshuffle = true;
-          progress_sweep = sweep_no;
-          note(std::string("no progress: ") +
-               (ordering == ContactOrdering::Coloured ? "colours" : "contacts") +
-               " reshuffled every sweep from sweep " + std::to_string(sweep_no));
-        }
-        if (sw.skipped > 0 && change * ratio <= s.tol) {
-          // converged on the visited contacts only: check the frozen ones
-          std::fill(frozen_.begin(), frozen_.end(), 0);
-        } else if (change == 0 && sw.skipped == 0) {
-          status = Status::Stalled;  // a fixed point of the sweep that is not a solution
-          note("the sweep no longer changes r");
+        const Status verdict = judge_full_error(r, error, sw, change, ratio, sweep_no, progress);
+        if (verdict != Status::MaxIterations) {
+          status = verdict;
           break;
         }
       }
@@ -225,13 +206,7 @@ class Nsgs {
         break;
       }
     }
-    if (status != Status::Converged && status != Status::NumericalError) {
-      const double e = full_error(r);
-      if (e < best_error_) {
-        best_error_ = e;
-        best_ = r;
-      }
-    }
+    if (status != Status::Converged && status != Status::NumericalError) keep_if_best(r, full_error(r));
     return finish(r, u, status, clock);
   }
 
@@ -302,7 +277,69 @@ class Nsgs {
     }
   }
 
-  SweepResult sweep(Eigen::Ref<Vector> r) {
+  /// Stall detection across full error evaluations.
+  struct Progress {
+    double error;    ///< the error at the last 1% improvement
+    int sweep;       ///< and its sweep
+    bool reshuffle;  ///< the contacts (colours) are reshuffled every sweep
+  };
+
+  /// The identity order, or the seeded shuffle, or the colouring; thaws
+  /// every contact.
+  void start_ordering(Eigen::Ref<Vector> r) {
+    const ContactOrdering ordering = settings_.ordering;
+    std::iota(order_.begin(), order_.end(), Index(0));
+    if (ordering == ContactOrdering::Coloured) {
+      prepare_colouring();
+      std::iota(colour_order_.begin(), colour_order_.end(), Index(0));
+      if constexpr (use_slots) slots_.gather(*colouring_, r);
+      start_threads();
+    } else if (ordering != ContactOrdering::Natural) {
+      rng_.seed(settings_.seed);
+      std::shuffle(order_.begin(), order_.end(), rng_);
+    }
+    std::fill(frozen_.begin(), frozen_.end(), 0);
+    local_failures_ = 0;
+  }
+
+  void keep_if_best(const Eigen::Ref<const Vector>& r, double error) {
+    if (error < best_error_) {
+      best_error_ = error;
+      best_ = r;
+    }
+  }
+
+  /// After a full error evaluation: keeps the best iterate, tests
+  /// convergence, reshuffles every sweep after a long stall, thaws the
+  /// frozen contacts or detects a fixed point of the sweep. Returns the
+  /// final status, or MaxIterations to go on.
+  Status judge_full_error(const Eigen::Ref<const Vector>& r, double error, const SweepResult& sw,
+                          double change, double ratio, int sweep_no, Progress& progress) {
+    const Settings& s = settings_;
+    keep_if_best(r, error);
+    if (error <= s.tol) return Status::Converged;
+    if (error < 0.99 * progress.error) {
+      progress.error = error;
+      progress.sweep = sweep_no;
+    } else if (s.stall_sweeps > 0 && sweep_no - progress.sweep >= s.stall_sweeps && !progress.reshuffle) {
+      if (s.ordering == ContactOrdering::Natural || s.ordering == ContactOrdering::Coloured)
+        rng_.seed(s.seed);
+      progress.reshuffle = true;
+      progress.sweep = sweep_no;
+      note(std::string("no progress: ") + (s.ordering == ContactOrdering::Coloured ? "colours" : "contacts") +
+           " reshuffled every sweep from sweep " + std::to_string(sweep_no));
+    }
+    if (sw.skipped > 0 && change * ratio <= s.tol) {
+      // converged on the visited contacts only: check the frozen ones
+      std::fill(frozen_.begin(), frozen_.end(), 0);
+    } else if (change == 0 && sw.skipped == 0) {
+      note("the sweep no longer changes r");
+      return Status::Stalled;  // a fixed point of the sweep that is not a solution
+    }
+    return Status::MaxIterations;
+  }
+
+  SweepResult ordered_sweep(Eigen::Ref<Vector> r) {
     SweepResult out;
     const LocalProblemView& p = *problem_;
     for (const Index a : order_) record(a, update_contact(a, r, storage_, p.q, data_), out);
