@@ -1,6 +1,7 @@
-// The ACLM outer loops (Acary, Cadoux, Lemarechal & Malick 2011; reference
-// talk, "Fixed point problem"): with u(s) the solution of the convex problem
-// with s frozen (ipm/socqp_ipm.hpp), a Coulomb solution is a fixed point of
+// The ACLM outer loops (Acary, Cadoux, Lemarechal & Malick 2011; Acary 2025
+// (talk), "Fixed point problem"; docs/references.md): with u(s) the solution
+// of the convex problem with s frozen (ipm/socqp_ipm.hpp), a Coulomb solution
+// is a fixed point of
 //   F(s)_a = ||u_T^a(s)||.
 //  * FixedPoint:  s <- F(s).
 //  * Newton:      s <- s + ds,  (I - F'(s)) ds = F(s) - s, solved by GMRES;

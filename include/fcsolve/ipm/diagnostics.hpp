@@ -1,4 +1,4 @@
-// Cheap structural diagnostics of a problem, which the reference talk relates
+// Cheap structural diagnostics of a problem, which Acary 2025 (talk, docs/references.md) relates
 // to the robustness of the solvers ("the rank of H (~ ratio number of
 // contact unknowns / number of dofs) plays an important role"):
 //   contact-to-dof ratio c = d nc / n  (c > 1 forces a rank-deficient H),

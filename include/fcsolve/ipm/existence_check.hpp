@@ -1,5 +1,5 @@
 // Numerical check of the existence assumption of Acary & Cadoux 2013
-// (reference talk, "Numerical validation of the key assumption"): if
+// (Acary & Cadoux 2013; Acary 2025 (talk), "Numerical validation of the key assumption"; docs/references.md): if
 //   x* = max { x : H^T v + w - a x in K* },  a = (N^1, ..., N^nc), N = (1, 0, 0),
 // is positive, some v has H^T v + w in int K*, and FC/I has a solution
 // (Slater's assumption; Acary, Cadoux, Lemarechal & Malick 2011, Thm 3.3).

@@ -5,7 +5,8 @@
 // Unknowns in Lorentz coordinates (ipm/nt_scaling.hpp): y = D r, x = D^-1 u~,
 // s = the frozen (convex IPM, ACLM) or coupled (NIPM) tangential speeds, and
 // for the global form v. The equations (Acary, Cadoux, Lemarechal & Malick
-// 2011; reference talk, "NIPM - linearization", FCLIB signs M v = H r + f):
+// 2011; Acary 2025 (talk), "NIPM - linearization"; docs/references.md;
+// FCLIB signs M v = H r + f):
 //   M v - H r - f = 0                          (global only)
 //   H^T v + w + A s - u~ = 0   i.e.  x = Hs^T v + D^-1 w + s e   (Hs = H D^-1)
 //                              or    x = D^-1 W D^-1 y + D^-1 q + s e (local)

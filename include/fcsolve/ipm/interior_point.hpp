@@ -8,7 +8,7 @@
 //   combined:  T^-1 dx + T dy = lambda \ (sigma mu e - lambda o lambda - dxa~ o dya~)
 //   step    =  min(1, gamma * largest step keeping x, y in L)
 // With `coupled` the slack s is an unknown with s = ||x_T|| (the NIPM of the
-// reference talk, "NIPM - linearization"); otherwise s is frozen data (ACLM
+// Acary 2025 (talk), "NIPM - linearization"; docs/references.md); otherwise s is frozen data (ACLM
 // 2011, problem (13)). Every iterate's error is the one core/error.hpp
 // defines (frozen-s natural map, or FCLIB when coupled): it alone decides
 // convergence, so a "fake solution" (tiny complementarity, large natural-map
@@ -435,7 +435,8 @@ class InteriorPoint {
     return total > 0 ? worst / (total / double(nc)) : -1;
   }
 
-  /// The reference talk's stopping quantity
+  /// The NIPM stopping quantity of Acary 2025 (talk, slide "Nonsmooth
+  /// Interior-Point Method"; docs/references.md)
   /// max(||r_p||inf, ||r_d||inf, ||r_s||inf, ||x o y||), in Lorentz units.
   double talk_residual(const Iterate& it) const {
     double comp = 0;

@@ -1,5 +1,6 @@
-// The nonsmooth interior-point method (NIPM) for the full FC/I (reference
-// talk, "Nonsmooth Interior-Point Method"; H.M. Nguyen & P. Armand): the
+// The nonsmooth interior-point method (NIPM) for the full FC/I (Nguyen &
+// Armand, in Acary 2025 (talk), "Nonsmooth Interior-Point Method", eq. (23);
+// docs/references.md): the
 // unknowns (v, u~, r, s) with
 //   M v - H r - f = 0,  H^T v + w + A s - u~ = 0,  s - ||u~_T|| = 0,
 //   u~ o r = 2 tau e,   (u~, r) in K* x K,
