@@ -1,5 +1,5 @@
 // The one error measure every fcsolve solver reports (Acary, Bremond & Huber
-// 2018, eq. "error"; reference talk eq. 20):
+// 2018, the FCLIB error; Acary 2025 (talk), eq. (20); docs/references.md):
 //
 //   F_nat(r)^a = r^a - P_{K^a}(r^a - u~^a),   u~ = u + g(u)   (natural map)
 //   error      = ||F_nat(r)||_2 / ||q||_2     (||q|| = 0 -> absolute)

@@ -1,6 +1,6 @@
 // The catalogue entry `auto`: one default call that aims to be robust AND
-// efficient (the open question at the end of the reference talk,
-// shared/docs/reference-talk.md: "choose efficiency OR robustness").
+// efficient (the open question that closes Acary 2025 (talk), "choose
+// efficiency OR robustness"; docs/references.md).
 //
 // It is a staged plan over the other catalogue entries. Every stage starts
 // from the best iterate so far and its result is judged with the FCLIB error

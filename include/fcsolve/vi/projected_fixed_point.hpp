@@ -1,5 +1,5 @@
 // Projection methods for the variational inequality form of FC/II
-// (Acary, Bremond & Huber 2018, sec. 4.1; reference talk, "VI based methods"):
+// (Acary, Bremond & Huber 2018, sec. 4.1; docs/references.md):
 //
 //   -F(r) in N_K(r),   F(r) = W r + q + g(W r + q)   (u~, De Saxce's velocity)
 //
