@@ -17,7 +17,7 @@
 #include "isolated_read.hpp"
 #include "json_writer.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/nipm.hpp>
 #include <fcsolve/problem/summary.hpp>

@@ -4,7 +4,7 @@
 // ACLM loops on closed-form cases and on every shared global problem, the
 // local (W) form, a rank-deficient H, unsymmetric data, the existence
 // check, bad input, and the rule that a reported convergence always means
-// the independent FCLIB error (core/error.hpp, = fcref.py) is within tol.
+// the independent FCLIB error (problem/error.hpp, = fcref.py) is within tol.
 #include "test_support.hpp"
 
 #include <fcsolve/nipm.hpp>

@@ -1,7 +1,7 @@
 // Problems, FCLIB files, the error measure, the reduction and the summary.
 #include "bindings.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/problem/summary.hpp>
 #include <fcsolve/problem/validate.hpp>

@@ -4,7 +4,7 @@
 namespace fcsolve {
 
 /// What a solver achieved. Only Converged means the error (fcsolve's FCLIB
-/// definition, core/error.hpp) is within the requested tolerance.
+/// definition, problem/error.hpp) is within the requested tolerance.
 enum class Status {
   NotRun,          ///< solve() was not called, or compute() failed
   Converged,       ///< error <= tol, checked with the full error measure

@@ -10,7 +10,7 @@
 // the data as given: a run is "converged" only if that error is within tol.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/linalg/default_backend.hpp>

@@ -13,7 +13,7 @@
 // ||r - P_K(r - F(r))|| / ||q|| comes for free every iteration.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
