@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/report_fields.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/local_problem.hpp>
@@ -15,6 +16,7 @@
 
 #include <memory>
 #include <string>
+#include <variant>
 
 namespace fcsolve_py {
 
@@ -43,6 +45,16 @@ struct GlobalProblemData {
     return *error_reduction;
   }
 };
+
+/// A report (summary, error, stage, catalogue entry) as the Python dict:
+/// the fields shown in Python, in order (fcsolve/core/report_fields.hpp).
+inline py::dict fields_dict(const fcsolve::Fields& fields) {
+  py::dict out;
+  for (const auto& f : fields)
+    if (f.shown_in(fcsolve::ShownInPython))
+      std::visit([&](const auto& x) { out[py::str(f.name)] = py::cast(x); }, f.value);
+  return out;
+}
 
 /// A read-only 1-D numpy view of `n` values at `data`, keeping `owner` alive.
 template <class T>
