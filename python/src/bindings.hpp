@@ -39,9 +39,16 @@ struct GlobalProblemData {
   /// Factorisation of M, built on the first error() call and kept: the
   /// error of a global solution needs ||H^T M^-1 f + w|| (and v when absent).
   std::shared_ptr<const Reduction> error_reduction;
+  /// ||H^T M^-1 f + w|| (the FCLIB error scale) once a solve or an error
+  /// call computed it; < 0 before. Passed to registry::solve, which then
+  /// does not factorise M again for it.
+  double reduced_q_norm = -1;
 
   const Reduction& reduction_for_error() {
-    if (!error_reduction) error_reduction = std::make_shared<Reduction>(problem, /*form_W=*/false);
+    if (!error_reduction) {
+      error_reduction = std::make_shared<Reduction>(problem, /*form_W=*/false);
+      reduced_q_norm = error_reduction->free_velocity_norm();
+    }
     return *error_reduction;
   }
 };

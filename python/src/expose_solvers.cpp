@@ -232,6 +232,9 @@ py::object solve(Data& data, py::handle solver, double tol, py::handle max_iter,
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw py::type_error("callback must be callable(iteration, error, seconds) or None");
 
+  if constexpr (global) {  // the error scale ||H^T M^-1 f + w||, if an earlier call computed it
+    if (data.reduced_q_norm >= 0) request.reduced_q_norm = data.reduced_q_norm;
+  }
   PythonIterationHook hook(std::move(callback));
   request.common.callback = [h = &hook](const IterationInfo& it) { return (*h)(it); };
   Result result;
@@ -241,6 +244,7 @@ py::object solve(Data& data, py::handle solver, double tol, py::handle max_iter,
     py::gil_scoped_release unlocked;
     result.outcome = registry::solve(data.problem, *entry, request);
   }
+  if constexpr (global) data.reduced_q_norm = result.outcome.reduced_q_norm;
   hook.raise_pending();
   return py::cast(std::move(result));
 }
