@@ -6,7 +6,7 @@
 // Compare ratios within one run (the machine is shared and noisy).
 #include "bench_support.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/linalg/eigen_backend.hpp>
 #include <fcsolve/linalg/suitesparse_backend.hpp>
 #include <fcsolve/problem/reduction.hpp>

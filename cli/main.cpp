@@ -13,15 +13,18 @@
 //                 campaigns: forwarded to the Python runner fcsolve.campaign)
 // Exit codes: 0 solved (or command done), 1 tolerance not reached, 2 bad input
 // or usage (message on stderr), 3 internal error.
+#include "field_output.hpp"
 #include "generate.hpp"
 #include "isolated_read.hpp"
 #include "json_writer.hpp"
 
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/nipm.hpp>
+#include <fcsolve/problem/error.hpp>
+#include <fcsolve/problem/report_fields.hpp>
 #include <fcsolve/problem/summary.hpp>
 #include <fcsolve/solvers/catalog.hpp>
+#include <fcsolve/solvers/report_fields.hpp>
 
 #include <unistd.h>
 
@@ -34,7 +37,6 @@
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -45,7 +47,9 @@ extern const char* const campaign_source_dir;  // generated: cli/source_paths.cp
 namespace {
 
 using namespace fcsolve;
+using fcsolve_cli::json_fields;
 using fcsolve_cli::JsonWriter;
+using fcsolve_cli::text_line;
 using fcsolve_cli::probe_read_in_child;
 
 constexpr int kExitSolved = 0, kExitNotSolved = 1, kExitBadInput = 2, kExitInternal = 3;
@@ -150,17 +154,6 @@ std::string fmt(double x, const char* spec = "%.3e") {
   return buf;
 }
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') { out += "\\n"; continue; }
-    if (c < 0x20 || c >= 0x7f) { out += '?'; continue; }
-    out += static_cast<char>(c);
-  }
-  return out + "\"";
-}
-
 /// A problem file from the user: probed in a child first (isolated_read.hpp).
 fclib::Problem read_untrusted(const std::string& path) {
   probe_read_in_child(path);
@@ -177,40 +170,15 @@ int cmd_info(Args args) {
   const fclib::Problem problem = read_untrusted(path);
   const ProblemSummary s = std::visit([](const auto& p) { return summarize(p); }, problem);
   const std::string title = std::visit([](const auto& p) { return p.text.title; }, problem);
-  const bool global = s.kind == "global";
+  Fields fields = summary_fields(s, title);
+  fields.insert(fields.begin(), Field::text("file", path));
   if (json) {
     JsonWriter w;
-    w.begin_object().field("file", path).field("kind", s.kind).field("d", s.d).field("nc", (long long)s.nc);
-    if (global) w.field("n", (long long)s.n);
-    w.field("m", (long long)s.m);
-    if (global) {
-      w.field("nnz_M", (long long)s.nnz_M).field("nnz_H", (long long)s.nnz_H);
-      w.field("nonzeros_M", (long long)s.nonzeros_M).field("nonzeros_H", (long long)s.nonzeros_H);
-      if (s.p > 0) w.field("p", (long long)s.p).field("nnz_G", (long long)s.nnz_G);
-    } else {
-      w.field("nnz_W", (long long)s.nnz_W).field("nonzeros_W", (long long)s.nonzeros_W);
-    }
-    w.field("mu_min", s.mu_min).field("mu_max", s.mu_max);
-    w.field(global ? "asymmetry_M" : "asymmetry_W", s.asymmetry).field("title", title);
-    w.end_object();
+    json_fields(w.begin_object(), fields).end_object();
     std::cout << w.str() << "\n";
-    return kExitSolved;
-  }
-  std::ostringstream o;
-  o << "file=" << path << " kind=" << s.kind << " d=" << s.d << " nc=" << s.nc;
-  if (global) o << " n=" << s.n;
-  o << " m=" << s.m;
-  if (global) {
-    o << " nnz_M=" << s.nnz_M << " nnz_H=" << s.nnz_H << " nonzeros_M=" << s.nonzeros_M
-      << " nonzeros_H=" << s.nonzeros_H;
-    if (s.p > 0) o << " p=" << s.p << " nnz_G=" << s.nnz_G;
   } else {
-    o << " nnz_W=" << s.nnz_W << " nonzeros_W=" << s.nonzeros_W;
+    std::cout << text_line(fields) << "\n";
   }
-  o << " mu_min=" << fmt(s.mu_min, "%.6g") << " mu_max=" << fmt(s.mu_max, "%.6g") << " "
-    << (global ? "asymmetry_M=" : "asymmetry_W=") << fmt(s.asymmetry, "%.3e")
-    << " title=" << quoted(title);
-  std::cout << o.str() << "\n";
   return kExitSolved;
 }
 
@@ -269,21 +237,14 @@ SolveOptions parse_solve_options(Args& args, const std::string& default_solver) 
 
 void print_outcome(const std::string& path, const std::string& kind,
                    const registry::SolveOutcome& out, const SolveOptions& o) {
+  Fields fields = registry::outcome_fields(out, o.request.common.tol);
+  fields.insert(fields.begin(), {Field::text("file", path), Field::text("kind", kind, false, ShownInJson)});
   if (o.json) {
     JsonWriter w;
-    w.begin_object().field("file", path).field("kind", kind).field("solver", out.solver);
-    w.field("status", to_string(out.info.status)).field("converged", out.info.converged());
-    w.field("iterations", out.info.iterations).field("error", out.info.error);
-    w.field("tol", o.request.common.tol).field("seconds", out.seconds);
-    w.field("setup_seconds", out.info.setup_seconds).field("solve_seconds", out.info.solve_seconds);
-    w.field("message", out.info.message);
+    json_fields(w.begin_object(), fields);
     if (!out.stages.empty()) {  // staged solvers (auto): what each stage did
       w.key("stages").begin_array();
-      for (const auto& st : out.stages) {
-        w.begin_object().field("stage", st.name).field("solver", st.solver);
-        w.field("seconds", st.seconds).field("iterations", st.iterations).field("error", st.error);
-        w.field("status", st.status).field("why", st.why).end_object();
-      }
+      for (const auto& st : out.stages) json_fields(w.begin_object(), registry::stage_fields(st)).end_object();
       w.end_array();
     }
     if (o.request.common.record_history) {
@@ -295,12 +256,7 @@ void print_outcome(const std::string& path, const std::string& kind,
     std::cout << w.str() << "\n";
     return;
   }
-  std::cout << "file=" << path << " solver=" << out.solver
-            << " status=" << to_string(out.info.status) << " iterations=" << out.info.iterations
-            << " error=" << fmt(out.info.error) << " tol=" << fmt(o.request.common.tol, "%.1e")
-            << " seconds=" << fmt(out.seconds, "%.4g");
-  if (!out.info.message.empty()) std::cout << " message=" << quoted(out.info.message);
-  std::cout << "\n";
+  std::cout << text_line(fields) << "\n";
   if (o.request.common.record_history) {
     std::cout << "history:";
     for (double e : out.info.history) std::cout << " " << fmt(e, "%.3e");
@@ -398,17 +354,11 @@ int cmd_error(Args args) {
   probe_read_in_child(sol_path, /*with_problem=*/false);
   auto sol = fclib::read_solution(sol_path);
   if (!sol) throw IoError(sol_path, "solution", "missing /solution group");
-  JsonWriter w;
-  w.begin_object().field("file", path).field("solution", sol_path);
-  std::ostringstream o;
+  Fields fields;
   if (const auto* lp = std::get_if<LocalProblem>(&problem)) {
     if (sol->r.size() != lp->size())
       throw IoError(sol_path, "solution/r", "expected " + std::to_string(lp->size()) + " entries");
-    const LocalErrorReport e = local_error_report(*lp, sol->r);
-    w.field("error", e.error).field("siconos_error", e.siconos_error).field("absolute", e.absolute);
-    w.field("max_contact", e.max_contact).field("worst_contact", (long long)e.worst_contact);
-    o << "error=" << fmt(e.error, "%.17g") << " siconos_error=" << fmt(e.siconos_error, "%.17g")
-      << " absolute=" << fmt(e.absolute, "%.17g") << " max_contact=" << fmt(e.max_contact, "%.17g");
+    fields = error_fields(local_error_report(*lp, sol->r));
   } else {
     const auto& gp = std::get<GlobalProblem>(problem);
     if (sol->r.size() != gp.size())
@@ -419,14 +369,16 @@ int cmd_error(Args args) {
     if (v.size() != gp.num_dofs())
       throw IoError(sol_path, "solution/v", "expected " + std::to_string(gp.num_dofs()) + " entries");
     const Vector lambda = gp.has_bilateral() ? (sol->l.size() ? sol->l : reduction.multipliers(sol->r)) : Vector();
-    const GlobalErrorReport e = global_error_report(gp, reduction.free_velocity_norm(), sol->r, v, lambda);
-    w.field("error", e.error).field("complementarity", e.complementarity);
-    w.field("equilibrium", e.equilibrium).field("max_contact", e.max_contact);
-    o << "error=" << fmt(e.error, "%.17g") << " complementarity=" << fmt(e.complementarity, "%.17g")
-      << " equilibrium=" << fmt(e.equilibrium, "%.17g") << " max_contact=" << fmt(e.max_contact, "%.17g");
+    fields = error_fields(global_error_report(gp, reduction.free_velocity_norm(), sol->r, v, lambda));
   }
-  w.end_object();
-  std::cout << (json ? w.str() : o.str()) << "\n";
+  if (json) {
+    JsonWriter w;
+    w.begin_object().field("file", path).field("solution", sol_path);
+    json_fields(w, fields).end_object();
+    std::cout << w.str() << "\n";
+  } else {
+    std::cout << text_line(fields) << "\n";
+  }
   return kExitSolved;
 }
 
@@ -479,9 +431,7 @@ int cmd_solvers(Args args) {
     JsonWriter w;
     w.begin_array();
     for (const auto& e : registry::entries()) {
-      w.begin_object().field("name", e.name).field("family", e.family).field("summary", e.summary);
-      w.field("needs_symmetric", e.needs_symmetric).field("default_max_iter", e.default_max_iter);
-      w.field("local", bool(e.solve_local)).field("global_native", bool(e.solve_global));
+      json_fields(w.begin_object(), registry::entry_fields(e));
       w.key("settings").begin_array();
       for (const auto& s : e.settings) {
         w.begin_object().field("name", s.name).field("type", registry::to_string(s.type));

@@ -1,5 +1,5 @@
 // Load an FCLIB problem and measure the FCLIB error of the zero reaction.
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/io/fclib.hpp>
 
 #include <iostream>

@@ -6,7 +6,7 @@
 //
 //   cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DFCSOLVE_BUILD_FUZZ=ON
 //   build-fuzz/fuzz/fuzz_fclib -max_len=200000 fuzz/corpus fuzz/seeds
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/nsgs.hpp>
 #include <fcsolve/problem/reduction.hpp>

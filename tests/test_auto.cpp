@@ -3,9 +3,9 @@
 // strongly coupled case that NSGS alone would take thousands of sweeps on,
 // so that the plan must switch to Newton; determinism, warm starts, the
 // iteration budget, and a bundled FCLIB problem. Success is judged by the
-// distance to the closed form and by core/error.hpp's error, never by the
+// distance to the closed form and by problem/error.hpp's error, never by the
 // solver's own claim alone.
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/problem/reduced_density.hpp>
 #include <fcsolve/scenes/elastic_stepper.hpp>

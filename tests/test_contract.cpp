@@ -13,7 +13,7 @@
 // An entry that does not apply to a kind of problem says so with a UsageError.
 #include "test_support.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/problem/reduction.hpp>

@@ -3,7 +3,7 @@
 // constraints, recovery of v and lambda).
 #include "test_support.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/linalg/suitesparse_backend.hpp>
 #include <fcsolve/problem/reduction.hpp>
 

@@ -4,7 +4,7 @@
 // ACLM loops on closed-form cases and on every shared global problem, the
 // local (W) form, a rank-deficient H, unsymmetric data, the existence
 // check, bad input, and the rule that a reported convergence always means
-// the independent FCLIB error (core/error.hpp, = fcref.py) is within tol.
+// the independent FCLIB error (problem/error.hpp, = fcref.py) is within tol.
 #include "test_support.hpp"
 
 #include <fcsolve/nipm.hpp>
@@ -235,7 +235,8 @@ TEST_CASE("NIPM and ACLM solve every global problem to 1e-8", "[ipm][nipm][aclm]
 }
 
 TEST_CASE("Where the published NIPM stalls, the recovery steps solve the problem", "[ipm][nipm][recovery]") {
-  // Without polish and recovery the NIPM is the talk's algorithm: it stalls
+  // Without polish and recovery the NIPM is the published algorithm (Nguyen &
+  // Armand, docs/references.md): it stalls
   // near the boundary on these (errors 1e-7 .. 1e-6, see the messages).
   for (const char* name : {"Confeti-ex03-Fc3D-SBM.hdf5", "GFC3D_Example1.hdf5"}) {
     CAPTURE(name);
@@ -398,9 +399,10 @@ TEST_CASE("Reported convergence always means FCLIB error <= tol", "[ipm][status]
       CHECK(fclib_error(g, out.r, out.v) > 1e-8);
     }
   }
-  SECTION("a fake solution of the talk's test is not accepted") {
+  SECTION("a fake solution of the published stopping test is not accepted") {
     // Without the polish the NIPM iterates until its own error test; the
-    // talk's test (residuals + ||u o r|| <= tol) is reported when it holds
+    // published test (residuals + ||u o r|| <= tol; Acary 2025 (talk), slide
+    // "Nonsmooth Interior-Point Method") is reported when it holds
     // with a larger FCLIB error.
     NipmSettings st;
     st.tol = 1e-14;

@@ -5,7 +5,7 @@
 // (take-off / stick / slide boundaries): the returned element matches a
 // one-sided directional derivative, i.e. the derivative of an adjacent piece.
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/formulation/alart_curnier.hpp>
 #include <fcsolve/formulation/fischer_burmeister.hpp>
 #include <fcsolve/formulation/jean_moreau.hpp>

@@ -1,7 +1,7 @@
 // The semismooth Newton solvers (newton.hpp): closed-form one- and
 // two-contact cases (take-off, stick, slide; 3D, 2D, frictionless), every
 // FCLIB problem solved to 1e-8 (checked with the independent error of
-// core/error.hpp), superlinear local convergence on full-rank problems (from
+// problem/error.hpp), superlinear local convergence on full-rank problems (from
 // the recorded error sequence), 1e-12 on the full-rank global problems,
 // clean failures on rank-deficient or unsolvable problems, policies
 // (storages, linear solvers, line searches, rho strategies), warm start, bad

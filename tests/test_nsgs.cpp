@@ -2,11 +2,11 @@
 // closed-form multi-contact cases, every storage, 2D and frictionless cones,
 // the options (omega, orderings, freezing, error evaluation), budgets and
 // callbacks, bad input, and the catalogue entries. Every check of success
-// uses the independent error of core/error.hpp.
+// uses the independent error of problem/error.hpp.
 #include "test_support.hpp"
 
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/local/alart_curnier_backtracking.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/nsgs.hpp>
 #include <fcsolve/solvers/catalog.hpp>
 

@@ -4,7 +4,7 @@
 // number of threads, and keeps the warm start, budgets and catalogue entry.
 #include "test_support.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/nsgs.hpp>
 #include <fcsolve/solvers/catalog.hpp>
 

@@ -1,13 +1,13 @@
 // The proximal point method (ppa.hpp): closed-form one-contact cases
 // (take-off, stick, slide) with both inner solvers, 2D and frictionless
 // cones, every FCLIB local problem to 1e-8 (checked with the independent
-// error of core/error.hpp), rank-deficient scenes (one rigid box on eight
+// error of problem/error.hpp), rank-deficient scenes (one rigid box on eight
 // contacts: rank W = 6 of 24; a settled sphere pile, `fcsolve generate
 // sphere-pile`'s scene), warm start, budgets, callback, bad input,
 // the regularised subproblem itself and the catalogue entries.
 #include "test_support.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/ppa.hpp>

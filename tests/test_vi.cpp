@@ -1,6 +1,6 @@
 // VI projection solvers (fixed point, extragradient): closed-form one-contact
 // cases, real FCLIB problems, 2D and frictionless scenes, status reporting.
-// Every check uses the independent error of core/error.hpp.
+// Every check uses the independent error of problem/error.hpp.
 #include "test_support.hpp"
 
 #include <fcsolve/vi.hpp>

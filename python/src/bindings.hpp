@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/report_fields.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/local_problem.hpp>
@@ -15,6 +16,7 @@
 
 #include <memory>
 #include <string>
+#include <variant>
 
 namespace fcsolve_py {
 
@@ -37,12 +39,29 @@ struct GlobalProblemData {
   /// Factorisation of M, built on the first error() call and kept: the
   /// error of a global solution needs ||H^T M^-1 f + w|| (and v when absent).
   std::shared_ptr<const Reduction> error_reduction;
+  /// ||H^T M^-1 f + w|| (the FCLIB error scale) once a solve or an error
+  /// call computed it; < 0 before. Passed to registry::solve, which then
+  /// does not factorise M again for it.
+  double reduced_q_norm = -1;
 
   const Reduction& reduction_for_error() {
-    if (!error_reduction) error_reduction = std::make_shared<Reduction>(problem, /*form_W=*/false);
+    if (!error_reduction) {
+      error_reduction = std::make_shared<Reduction>(problem, /*form_W=*/false);
+      reduced_q_norm = error_reduction->free_velocity_norm();
+    }
     return *error_reduction;
   }
 };
+
+/// A report (summary, error, stage, catalogue entry) as the Python dict:
+/// the fields shown in Python, in order (fcsolve/core/report_fields.hpp).
+inline py::dict fields_dict(const fcsolve::Fields& fields) {
+  py::dict out;
+  for (const auto& f : fields)
+    if (f.shown_in(fcsolve::ShownInPython))
+      std::visit([&](const auto& x) { out[py::str(f.name)] = py::cast(x); }, f.value);
+  return out;
+}
 
 /// A read-only 1-D numpy view of `n` values at `data`, keeping `owner` alive.
 template <class T>

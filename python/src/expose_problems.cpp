@@ -1,8 +1,9 @@
 // Problems, FCLIB files, the error measure, the reduction and the summary.
 #include "bindings.hpp"
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/io/fclib.hpp>
+#include <fcsolve/problem/report_fields.hpp>
 #include <fcsolve/problem/summary.hpp>
 #include <fcsolve/problem/validate.hpp>
 
@@ -61,26 +62,7 @@ ProblemText text_argument(const std::string& title, const std::string& descripti
 }
 
 py::dict summary_dict(const fcsolve::ProblemSummary& s, const std::string& title) {
-  py::dict out("kind"_a = s.kind, "d"_a = s.d, "nc"_a = s.nc);
-  const bool global = s.kind == "global";
-  if (global) out["n"] = s.n;
-  out["m"] = s.m;
-  if (global) {
-    out["nnz_M"] = s.nnz_M;
-    out["nnz_H"] = s.nnz_H;
-    out["nonzeros_M"] = s.nonzeros_M;
-    out["nonzeros_H"] = s.nonzeros_H;
-    out["p"] = s.p;
-    out["nnz_G"] = s.nnz_G;
-  } else {
-    out["nnz_W"] = s.nnz_W;
-    out["nonzeros_W"] = s.nonzeros_W;
-  }
-  out["mu_min"] = s.mu_min;
-  out["mu_max"] = s.mu_max;
-  out[global ? "asymmetry_M" : "asymmetry_W"] = s.asymmetry;
-  out["title"] = title;
-  return out;
+  return fields_dict(fcsolve::summary_fields(s, title));
 }
 
 void check_length(const Vector& x, Index size, const char* field) {
@@ -93,9 +75,7 @@ py::dict local_error_dict(const LocalProblemData& self, py::handle r_obj) {
   const Vector r = vector_argument(r_obj, "r");
   check_length(r, self.problem.size(), "r");
   const fcsolve::LocalErrorReport e = fcsolve::local_error_report(self.problem, r);
-  return py::dict("error"_a = e.error, "siconos_error"_a = e.siconos_error,
-                  "absolute"_a = e.absolute, "max_contact"_a = e.max_contact,
-                  "worst_contact"_a = e.worst_contact);
+  return fields_dict(fcsolve::error_fields(e));
 }
 
 py::dict global_error_dict(GlobalProblemData& self, py::handle r_obj, py::handle v_obj,
@@ -116,9 +96,7 @@ py::dict global_error_dict(GlobalProblemData& self, py::handle r_obj, py::handle
   }
   const fcsolve::GlobalErrorReport e =
       fcsolve::global_error_report(p, reduction.free_velocity_norm(), r, v, lambda);
-  return py::dict("error"_a = e.error, "complementarity"_a = e.complementarity,
-                  "equilibrium"_a = e.equilibrium, "max_contact"_a = e.max_contact,
-                  "worst_contact"_a = e.worst_contact);
+  return fields_dict(fcsolve::error_fields(e));
 }
 
 py::object solution_dict(const fcsolve::fclib::Solution& s) {

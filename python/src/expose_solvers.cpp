@@ -8,6 +8,7 @@
 
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/solvers/catalog.hpp>
+#include <fcsolve/solvers/report_fields.hpp>
 
 #if __has_include(<fcsolve/ipm/existence_check.hpp>) && __has_include(<fcsolve/ipm/diagnostics.hpp>)
 #include <fcsolve/ipm/diagnostics.hpp>
@@ -231,6 +232,9 @@ py::object solve(Data& data, py::handle solver, double tol, py::handle max_iter,
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw py::type_error("callback must be callable(iteration, error, seconds) or None");
 
+  if constexpr (global) {  // the error scale ||H^T M^-1 f + w||, if an earlier call computed it
+    if (data.reduced_q_norm >= 0) request.reduced_q_norm = data.reduced_q_norm;
+  }
   PythonIterationHook hook(std::move(callback));
   request.common.callback = [h = &hook](const IterationInfo& it) { return (*h)(it); };
   Result result;
@@ -240,6 +244,7 @@ py::object solve(Data& data, py::handle solver, double tol, py::handle max_iter,
     py::gil_scoped_release unlocked;
     result.outcome = registry::solve(data.problem, *entry, request);
   }
+  if constexpr (global) data.reduced_q_norm = result.outcome.reduced_q_norm;
   hook.raise_pending();
   return py::cast(std::move(result));
 }
@@ -257,11 +262,9 @@ py::list solver_list() {
   for (const auto& e : registry::entries()) {
     py::list settings;
     for (const auto& s : e.settings) settings.append(setting_dict(s));
-    out.append(py::dict("name"_a = e.name, "family"_a = e.family, "summary"_a = e.summary,
-                        "needs_symmetric"_a = e.needs_symmetric,
-                        "default_max_iter"_a = e.default_max_iter,
-                        "local"_a = bool(e.solve_local), "global_native"_a = e.solves_global_natively(),
-                        "settings"_a = settings));
+    py::dict entry = fields_dict(registry::entry_fields(e));
+    entry["settings"] = settings;
+    out.append(entry);
   }
   return out;
 }
@@ -441,9 +444,7 @@ void init_solvers(py::module_& m) {
       .def_property_readonly("stages", [](const Result& r) {
         py::list out;
         for (const auto& st : r.outcome.stages)
-          out.append(py::dict("stage"_a = st.name, "solver"_a = st.solver, "seconds"_a = st.seconds,
-                              "iterations"_a = st.iterations, "error"_a = st.error,
-                              "status"_a = st.status, "why"_a = st.why));
+          out.append(fields_dict(registry::stage_fields(st)));
         return out;
       }, "Stages a staged solver ('auto') ran, as dicts (stage, solver, seconds, iterations, "
          "error, status, why); empty for the other solvers.")

@@ -395,3 +395,20 @@ def test_ctrl_c_interrupts_a_long_solve():
     assert child.returncode == 7, (out, err)
     assert time.perf_counter() - sent < 5
     assert float(out.split()[-1]) < 10
+
+
+@pytest.mark.parametrize("solver", ["nsgs", "auto", "nsn-ac-global"])
+def test_global_error_scale_is_computed_once_per_problem(solver):
+    """A GlobalProblem keeps ||H^T M^-1 f + w|| (the FCLIB error scale) from
+    its first solve or error() and hands it to the next solves, which then do
+    not factorise M for it: the reported errors must be those of a fresh
+    problem and of fcref."""
+    path = data_file("LMGC_GlobalFrictionContactProblem00046.hdf5")
+    fresh = fcsolve.solve(fcsolve.load(path), solver, tol=1e-10)
+    P = fcsolve.load(path)
+    P.error(np.zeros(P.size))  # builds the scale first
+    for _ in range(2):
+        again = fcsolve.solve(P, solver, tol=1e-10)
+        assert again.error == pytest.approx(fresh.error, rel=1e-12, abs=1e-300)
+        assert again.error == pytest.approx(P.error(again.r, again.v), rel=1e-12, abs=1e-300)
+        assert again.error == pytest.approx(reference_error(path, P, again.r, again.v), rel=1e-6, abs=1e-14)

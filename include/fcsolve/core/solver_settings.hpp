@@ -25,7 +25,7 @@ struct IterationInfo {
 using IterationCallback = std::function<bool(const IterationInfo&)>;
 
 struct SolverSettings {
-  double tol = 1e-8;  ///< target FCLIB relative error (core/error.hpp)
+  double tol = 1e-8;  ///< target FCLIB relative error (problem/error.hpp)
   int max_iter = 1000;
   double max_time = std::numeric_limits<double>::infinity();  ///< seconds
   bool record_history = false;  ///< keep the error of every iteration in info().history

@@ -4,7 +4,7 @@
 namespace fcsolve {
 
 /// What a solver achieved. Only Converged means the error (fcsolve's FCLIB
-/// definition, core/error.hpp) is within the requested tolerance.
+/// definition, problem/error.hpp) is within the requested tolerance.
 enum class Status {
   NotRun,          ///< solve() was not called, or compute() failed
   Converged,       ///< error <= tol, checked with the full error measure
@@ -16,6 +16,13 @@ enum class Status {
   Stopped,         ///< the user's callback asked to stop
 };
 
+/// The stable token of a status, as the CLI (text and JSON), the Python
+/// `Result.status` and the campaign CSVs write it. NumericalError stays
+/// "nan" although ipm::to_string(IpmExit::NumericalError) reads "numerical
+/// error": the token is data, not prose. python/tests/test_solve.py, the
+/// campaign's failure classes (campaign/results.py, tasks.py, charts.py), the
+/// Siconos runner's output and every results.csv already written use "nan";
+/// renaming it would split one failure class in two across old and new runs.
 inline const char* to_string(Status s) noexcept {
   switch (s) {
     case Status::NotRun: return "not-run";

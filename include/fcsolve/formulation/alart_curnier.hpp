@@ -1,6 +1,6 @@
-// The Alart-Curnier function of one contact [NSN-AC] (Alart & Curnier,
-// CMAME 92, 1991, the mixed "augmented Lagrangian" formulation; Acary,
-// Bremond & Huber 2018 and the reference talk, "Nonsmooth Newton on G(z) = 0"),
+// The Alart-Curnier function of one contact [NSN-AC] (Alart & Curnier 1991,
+// the mixed "augmented Lagrangian" formulation; Acary, Bremond & Huber 2018,
+// [NSN-AC]; full citations in docs/references.md),
 // with rho = (rho_N, rho_T, rho_T) > 0 per component:
 //   G_N = r_N - P_{R+}(r_N - rho_N u_N)
 //   G_T = r_T - P_{D(mu (r_N - rho_N u_N)_+)}(r_T - rho_T u_T)

@@ -44,30 +44,30 @@ inline double scalar_fischer_burmeister(double a, double b, double* da, double* 
   return a + b - h;
 }
 
-/// phi(x, y) in L^N and, if Vx is non-null, Vx = L(s)^-1 L(x), Vy = L(s)^-1 L(y)
+/// phi(x, y) in L^D and, if Vx is non-null, Vx = L(s)^-1 L(x), Vy = L(s)^-1 L(y)
 /// (so dphi = (I - Vx) dx + (I - Vy) dy).
-template <int N>
-SmallVector<N> lorentz_fischer_burmeister(const SmallVector<N>& x, const SmallVector<N>& y,
-                                          SmallMatrix<N>* Vx, SmallMatrix<N>* Vy) {
-  const SmallVector<N> w = jordan::product<N>(x, x) + jordan::product<N>(y, y);
-  const jordan::Spectral<N> sw = jordan::spectral<N>(w);
+template <int D>
+SmallVector<D> lorentz_fischer_burmeister(const SmallVector<D>& x, const SmallVector<D>& y,
+                                          SmallMatrix<D>* Vx, SmallMatrix<D>* Vy) {
+  const SmallVector<D> w = jordan::product<D>(x, x) + jordan::product<D>(y, y);
+  const jordan::Spectral<D> sw = jordan::spectral<D>(w);
   const double sigma1 = std::sqrt(std::max(sw.lambda1, 0.0));
   const double sigma2 = std::sqrt(std::max(sw.lambda2, 0.0));
-  const SmallVector<N> s = sigma1 * sw.c1 + sigma2 * sw.c2;
+  const SmallVector<D> s = sigma1 * sw.c1 + sigma2 * sw.c2;
   if (Vx) {
     if (sigma2 <= 0) {  // w = 0: x = y = 0
       Vx->setIdentity();
       *Vx *= kSqrtHalf;
       *Vy = *Vx;
     } else {
-      const SmallVector<N> c1 = sw.c1, c2 = sw.c2;
-      SmallMatrix<N> Linv = (2 / sigma2) * c2 * c2.transpose();
+      const SmallVector<D> c1 = sw.c1, c2 = sw.c2;
+      SmallMatrix<D> Linv = (2 / sigma2) * c2 * c2.transpose();
       if (sigma1 > 1e-8 * sigma2) Linv += (2 / sigma1) * c1 * c1.transpose();
-      const SmallVector<N - 1> n = 2 * c2.template tail<N - 1>();  // unit: w_T/||w_T||
-      Linv.template block<N - 1, N - 1>(1, 1) +=
-          (2 / (sigma1 + sigma2)) * (SmallMatrix<N - 1>::Identity() - n * n.transpose());
-      Vx->noalias() = Linv * jordan::arrow<N>(x);
-      Vy->noalias() = Linv * jordan::arrow<N>(y);
+      const SmallVector<D - 1> n = 2 * c2.template tail<D - 1>();  // unit: w_T/||w_T||
+      Linv.template block<D - 1, D - 1>(1, 1) +=
+          (2 / (sigma1 + sigma2)) * (SmallMatrix<D - 1>::Identity() - n * n.transpose());
+      Vx->noalias() = Linv * jordan::arrow<D>(x);
+      Vy->noalias() = Linv * jordan::arrow<D>(y);
     }
   }
   return x + y - s;

@@ -1,5 +1,5 @@
 // The natural map of one contact [NSN-NM] (Acary, Bremond & Huber 2018,
-// "direct normal map reformulation"; the error measure of core/error.hpp is
+// "direct normal map reformulation"; the error measure of problem/error.hpp is
 // its value at rho = 1):
 //   G = r - P_K(r - rho (u + g(u))),   g(u) = (mu ||u_T||, 0)   (De Saxce 1992)
 // The solution set is that of the VI "find r in K, <u~, s - r> >= 0 for all

@@ -15,8 +15,8 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/ipm/nt_scaling.hpp>
+#include <fcsolve/problem/error.hpp>
 
 #include <type_traits>
 #include <vector>

@@ -15,10 +15,10 @@
 // iterative refinement) keeps K invertible when H is rank-deficient.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/ipm/form_common.hpp>
 #include <fcsolve/ipm/kkt_system.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/problem/symmetry.hpp>

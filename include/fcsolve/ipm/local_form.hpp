@@ -10,9 +10,9 @@
 // T -> 0): the static regularisation of KktSystem handles that.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/ipm/form_common.hpp>
 #include <fcsolve/ipm/kkt_system.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/symmetry.hpp>
 

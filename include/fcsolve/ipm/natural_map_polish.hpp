@@ -23,7 +23,6 @@
 // reactions are not unique); the shift picks a small-norm step among them.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/formulation/natural_map.hpp>
 #include <fcsolve/ipm/form_common.hpp>
@@ -31,6 +30,7 @@
 #include <fcsolve/newton/global_jacobian.hpp>
 #include <fcsolve/newton/line_search.hpp>
 #include <fcsolve/newton/reduced_jacobian.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 

@@ -16,7 +16,7 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 
 #include <Eigen/Eigenvalues>
 
@@ -62,7 +62,7 @@ struct OneContact {
     return u;
   }
   /// ||F_nat(r)|| = ||r - P_K(r - (u + g(u)))||, the per-contact term of
-  /// the FCLIB error (core/error.hpp).
+  /// the FCLIB error (problem/error.hpp).
   static double residual(const Mat& W, const Vec& q, double mu, const Vec& r) {
     return natural_map<Cone>(r, velocity(W, q, r), mu).norm();
   }

@@ -14,13 +14,13 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/formulation/one_contact_function.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
 #include <fcsolve/newton/contact_residual.hpp>
 #include <fcsolve/newton/global_jacobian.hpp>
 #include <fcsolve/newton/linear_solvers.hpp>
 #include <fcsolve/newton/newton_loop.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/problem/validate.hpp>
 

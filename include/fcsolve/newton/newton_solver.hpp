@@ -14,7 +14,6 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/core/error.hpp>
 #include <fcsolve/formulation/one_contact_function.hpp>
 #include <fcsolve/local/alart_curnier_backtracking.hpp>
 #include <fcsolve/newton/contact_residual.hpp>
@@ -22,6 +21,7 @@
 #include <fcsolve/newton/newton_loop.hpp>
 #include <fcsolve/newton/reduced_jacobian.hpp>
 #include <fcsolve/nsgs/nsgs_solver.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/validate.hpp>
 #include <fcsolve/storage/storage.hpp>
 

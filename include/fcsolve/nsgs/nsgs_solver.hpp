@@ -24,13 +24,13 @@
 // renumbered so that each colour is contiguous (SlotLayout): a colour then
 // streams its rows of W instead of reading every k-th one.
 //
-// Success is declared only on the full FCLIB error (core/error.hpp) of the
+// Success is declared only on the full FCLIB error (problem/error.hpp) of the
 // returned r: error = ||F_nat(r)|| / ||q|| <= tol. When the solve fails
 // (iteration or time budget, callback, NaN) r is the iterate with the
 // smallest full error seen, and info().error is that error.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>

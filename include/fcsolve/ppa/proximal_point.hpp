@@ -16,14 +16,14 @@
 // retried with the larger alpha (a better-conditioned subproblem). Alpha
 // stuck at alpha_max with no step taken is a stall.
 //
-// Success is declared only on the FCLIB error of r (core/error.hpp) of the
+// Success is declared only on the FCLIB error of r (problem/error.hpp) of the
 // original problem. The inner solver's compute() runs once per outer
 // iteration (its cached diagonal blocks, rho and scale depend on alpha and
 // q): that set-up may allocate; the inner iterations themselves do not.
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>

@@ -83,7 +83,7 @@ class GlobalReduction {
 
   /// The reduced problem FC/II(W, q, mu) (owned; d and mu copied).
   const LocalProblem& local() const { return local_; }
-  /// ||q|| = ||H^T M^-1 f + w||: the scale of the global error (core/error.hpp).
+  /// ||q|| = ||H^T M^-1 f + w||: the scale of the global error (problem/error.hpp).
   double free_velocity_norm() const { return local_.q.norm(); }
 
   /// v = M^-1 (H r + f) (with G: the v-block of K^-1 (H r + f, -b)).

@@ -1,6 +1,6 @@
 // The catalogue entry `auto`: one default call that aims to be robust AND
-// efficient (the open question at the end of the reference talk,
-// shared/docs/reference-talk.md: "choose efficiency OR robustness").
+// efficient (the open question that closes Acary 2025 (talk), "choose
+// efficiency OR robustness"; docs/references.md).
 //
 // It is a staged plan over the other catalogue entries. Every stage starts
 // from the best iterate so far and its result is judged with the FCLIB error
@@ -141,7 +141,8 @@ template <class View>
 class StagedRun {
  protected:
   StagedRun(const View& p, const SolveRequest& req, const Features& f)
-      : p_(p), req_(req), f_(f), best_(initial_reactions(req, p.size())) {}
+      : p_(p), req_(req), f_(f), best_(initial_reactions(req, p.size())),
+        reduced_q_norm_(req.reduced_q_norm) {}
 
   double tol() const { return req_.common.tol; }
   bool done() const { return best_error_ <= tol() || out_of_time() || out_of_iterations() || stopped_; }
@@ -180,7 +181,9 @@ class StagedRun {
     if (stall_window > 0) req.settings.set("stall_window", (long long)stall_window);
     req.r0 = best_;
     req.v0 = best_v_;
+    req.reduced_q_norm = reduced_q_norm_;  // FC/I: factorise M for the error scale once
     last_ = registry::solve(p_, entry, req);
+    reduced_q_norm_ = last_.reduced_q_norm;
     last_status_ = last_.info.status;
     iterations_ += last_.info.iterations;
     setup_seconds_ += last_.info.setup_seconds;
@@ -239,6 +242,7 @@ class StagedRun {
     out.info.message = "auto (" + features + "): stages [" + reports_ + "]";
     if (!note.empty()) out.info.message += "; " + note;
     out.stages = std::move(stages_);
+    out.reduced_q_norm = reduced_q_norm_;
     return out;
   }
 
@@ -256,6 +260,7 @@ class StagedRun {
   std::vector<double> history_;
   std::string reports_;
   std::vector<StageReport> stages_;
+  double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
 
 /// The staged run on FC/II.
@@ -434,6 +439,7 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
   out.v = reduction.velocity(out.r);
   if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
   out.info.setup_seconds += reduction.seconds();
+  out.reduced_q_norm = reduction.free_velocity_norm();  // the error scale, already known
   return out;
 }
 

@@ -3,10 +3,10 @@
 // M, H; with bilateral constraints by reduction), local ones on W.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
-#include <fcsolve/nipm.hpp>
-#include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/core/solver_contract.hpp>
+#include <fcsolve/nipm.hpp>
+#include <fcsolve/problem/error.hpp>
+#include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/solvers/dispatch.hpp>
 #include <fcsolve/solvers/registry.hpp>
 

@@ -10,7 +10,7 @@
 // the data as given: a run is "converged" only if that error is within tol.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
@@ -36,6 +36,10 @@ struct SolveRequest {
   SettingValues settings;  ///< the entry's own knobs (defaults unless set)
   Vector r0;               ///< warm start for r (empty: solver's default start)
   Vector v0;               ///< warm start for v (global-native solvers)
+  /// ||H^T M^-1 f + w|| of the FC/I problem, if the caller knows it (an
+  /// earlier solve of the same problem: SolveOutcome::reduced_q_norm); < 0:
+  /// unknown. Saves registry::solve a factorisation of M for the error scale.
+  double reduced_q_norm = -1;
 };
 
 /// One stage of a staged solver (`auto`): which entry ran, for how long,
@@ -56,6 +60,11 @@ struct SolveOutcome {
   double seconds = 0;      ///< wall time of the whole call (incl. reduction)
   std::string solver;
   std::vector<StageReport> stages;  ///< staged solvers only (`auto`)
+  /// FC/I: ||H^T M^-1 f + w||, the scale of the FCLIB error, as the entry
+  /// found it (a reduction, or a native solver that factorised M) and as
+  /// registry::solve used it; < 0: unknown (local problems, or a native entry
+  /// that does not pass it on; the registry then computes it).
+  double reduced_q_norm = -1;
 };
 
 using LocalSolveFunction =
@@ -87,7 +96,8 @@ struct SolverEntry {
 
 /// FC/I through FC/II: reduces p (W = H^T M^-1 H, q; problem/reduction.hpp),
 /// runs `solve_reduced(LocalProblemView)` and recovers v (and lambda when p
-/// has bilateral constraints). `q_norm`, if given, receives the error scale.
+/// has bilateral constraints). The outcome keeps the error scale
+/// ||H^T M^-1 f + w|| (`reduced_q_norm`; also in `*q_norm` if given).
 /// The one place the registry and the native entries reduce.
 template <class Backend = DefaultBackend, class SolveReduced>
 SolveOutcome solve_by_reduction(const GlobalProblemView& p, SolveReduced&& solve_reduced,
@@ -98,7 +108,8 @@ SolveOutcome solve_by_reduction(const GlobalProblemView& p, SolveReduced&& solve
   out.v = reduction.velocity(out.r);
   if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
   out.info.setup_seconds += reduce_seconds;
-  if (q_norm) *q_norm = reduction.free_velocity_norm();
+  out.reduced_q_norm = reduction.free_velocity_norm();
+  if (q_norm) *q_norm = out.reduced_q_norm;
   return out;
 }
 
@@ -228,19 +239,22 @@ SolveOutcome solve(const GlobalProblemView& p, const SolverEntry& e, const Solve
   detail::check_warm_start(req.r0, p.size(), "r0");
   detail::check_warm_start(req.v0, p.num_dofs(), "v0");
   SolveOutcome out;
-  double q_norm;
   if (e.solves_global_natively()) {
     out = e.solve_global(p, req);
-    q_norm = GlobalReduction<Backend>(p, /*form_W=*/false).free_velocity_norm();  // error scale
   } else {
     if (!e.solve_local) throw UsageError("solver '" + e.name + "' has no entry point");
     out = solve_by_reduction<Backend>(
-        p, [&](const LocalProblemView& reduced) { return solve(reduced, e, req); }, &q_norm);
+        p, [&](const LocalProblemView& reduced) { return solve(reduced, e, req); });
   }
   detail::check_returned(out.r, p.size(), e.name, "r");
   detail::check_returned(out.v, p.num_dofs(), e.name, "v");
+  // The error scale: what the entry or the caller already computed, else one
+  // factorisation of M (GlobalReduction without W) here.
+  if (out.reduced_q_norm < 0) out.reduced_q_norm = req.reduced_q_norm;
+  if (out.reduced_q_norm < 0)
+    out.reduced_q_norm = GlobalReduction<Backend>(p, /*form_W=*/false).free_velocity_norm();
   out.u = p.H.transpose() * out.v + p.w;
-  const GlobalErrorReport rep = global_error_report(p, q_norm, out.r, out.v, out.lambda);
+  const GlobalErrorReport rep = global_error_report(p, out.reduced_q_norm, out.r, out.v, out.lambda);
   detail::enforce_tolerance(out, rep.error, req.common.tol);
   out.solver = e.name;
   out.seconds = clock.seconds();

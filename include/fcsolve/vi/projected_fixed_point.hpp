@@ -1,5 +1,5 @@
 // Projection methods for the variational inequality form of FC/II
-// (Acary, Bremond & Huber 2018, sec. 4.1; reference talk, "VI based methods"):
+// (Acary, Bremond & Huber 2018, sec. 4.1; docs/references.md):
 //
 //   -F(r) in N_K(r),   F(r) = W r + q + g(W r + q)   (u~, De Saxce's velocity)
 //
@@ -13,7 +13,7 @@
 // ||r - P_K(r - F(r))|| / ||q|| comes for free every iteration.
 #pragma once
 
-#include <fcsolve/core/error.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>

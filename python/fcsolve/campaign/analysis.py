@@ -1,7 +1,8 @@
 """Numbers behind the report, computed from typed CSV rows (results.load_results).
 
 Performance profiles (Dolan & More 2002, "Benchmarking optimization software
-with performance profiles", Math. Prog. 91(2); reference talk eqs. 21-22):
+with performance profiles", Math. Prog. 91(2); Acary 2025 (talk), eqs.
+(21)-(22); docs/references.md):
 for a measure t_{p,s} (time, iterations) of solver s on problem p,
 
     tau_{p,s} = t_{p,s} / min_s t_{p,s}       (infinite when s did not solve p)

@@ -3,7 +3,7 @@
 A campaign judges every run, fcsolve's and the peers', by recomputing the error
 of the solution file it returned, independently of the solver's own claim.
 The measure is the FCLIB relative natural-map error (Acary, Bremond & Huber
-2018, eq. "error"; reference talk eq. 20):
+2018, the FCLIB error; Acary 2025 (talk), eq. (20); docs/references.md):
 
     u        = W r + q                  (FC/II)   or   u = H^T v + w  (FC/I)
     u~^a     = u^a + (mu_a ||u_T^a||, 0, ...)      (De Saxce's modified velocity)

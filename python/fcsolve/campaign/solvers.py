@@ -17,7 +17,11 @@ DEFAULT_PEER_PYTHON = "/usr/bin/python3"
 
 
 @dataclasses.dataclass
-class SolverSpec:
+class CampaignSolver:
+    """One solver a campaign runs, as a command line: an fcsolve catalogue
+    entry or a peer's solver (not fcsolve.SolverSpec, which describes a
+    catalogue entry's settings for the Python API)."""
+
     name: str                # as in the CSV
     family: str              # "vi", "nsgs", ... or the peer ("siconos")
     prefix: list             # the command before FILE
@@ -56,9 +60,9 @@ def _json_command(argv, what):
 
 
 def fcsolve_solvers(fcsolve):
-    """Every solver registered in the binary, as SolverSpec."""
+    """Every solver registered in the binary, as CampaignSolver."""
     entries = _json_command([fcsolve, "solvers", "--json"], f"{fcsolve} solvers --json")
-    return [SolverSpec(name=e["name"], family=e.get("family", ""), prefix=[fcsolve, "solve"],
+    return [CampaignSolver(name=e["name"], family=e.get("family", ""), prefix=[fcsolve, "solve"],
                        local=bool(e.get("local", True)),
                        # a local solver solves FC/I by reduction (registry::solve)
                        global_=bool(e.get("local", True) or e.get("global_native", False)))
@@ -71,7 +75,7 @@ def runner_path(peer):
 
 @functools.lru_cache(maxsize=None)
 def peer_solvers(peer, python=DEFAULT_PEER_PYTHON):
-    """The peer's solvers as SolverSpec; RuntimeError saying why when it cannot run."""
+    """The peer's solvers as CampaignSolver; RuntimeError saying why when it cannot run."""
     if peer not in PEER_RUNNERS:
         raise RuntimeError(f"unknown peer '{peer}' (known: {', '.join(PEER_RUNNERS)})")
     runner = runner_path(peer)
@@ -81,13 +85,13 @@ def peer_solvers(peer, python=DEFAULT_PEER_PYTHON):
         raise RuntimeError(f"peer '{peer}': cannot run {python}: {e}") from e
     if done.returncode != 0:
         raise RuntimeError(f"peer '{peer}' skipped: {done.stderr.strip() or 'runner failed'}")
-    return [SolverSpec(name=f"{peer}:{e['name']}", family=peer, prefix=[python, runner],
+    return [CampaignSolver(name=f"{peer}:{e['name']}", family=peer, prefix=[python, runner],
                        local=e["local"], global_=e["global_native"], peer=True)
             for e in json.loads(done.stdout)]
 
 
 def resolve(spec, fcsolve=None, peer_python=DEFAULT_PEER_PYTHON, warn=print):
-    """SolverSpecs for a --solvers list: names, `all` (every fcsolve solver),
+    """The CampaignSolver list for a --solvers list: names, `all` (every fcsolve solver),
     `PEER:all` (every solver of a peer). A peer that cannot run is skipped with
     a message; an unknown name is an error."""
     names = [s.strip() for s in spec.split(",") if s.strip()] if isinstance(spec, str) else list(spec)
