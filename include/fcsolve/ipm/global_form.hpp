@@ -103,6 +103,8 @@ class GlobalForm {
   double initial_scaling() const { return theta_; }
   double diagonal_scale() const { return 1.0; }  // weights carry the units
   double error_scale() const { return q_norm_ > 0 ? q_norm_ : 1.0; }
+  /// ||H^T M^-1 f + w|| (0 allowed), from the factorisation of M in compute().
+  double free_velocity_norm() const { return q_norm_; }
   KktSystem<N, Factorization>& kkt() { return kkt_; }
   /// M factorised once: v = M^-1 (H r + f).
   const GlobalReduction<EigenBackend>& reduction() const { return reduction_; }

@@ -103,6 +103,9 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
     return info_;
   }
 
+  /// ||H^T M^-1 f + w||, the FCLIB error scale, known since compute().
+  double free_velocity_norm() const { return q_norm_; }
+
   /// The complementarity and equilibrium parts of the error of the last solve.
   double complementarity() const { return complementarity_; }
   double equilibrium() const { return equilibrium_; }

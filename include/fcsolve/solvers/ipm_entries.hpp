@@ -83,13 +83,19 @@ S ipm_settings_from(const SolveRequest& req) {
 /// only when the Coulomb (FCLIB) error of its point is within tol, so that
 /// the registry's re-check never has to take a claim back.
 template <class Form, class View>
-SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, Vector& r, Vector& w) {
-  r = initial_reactions(req, p.size());
-  if constexpr (Form::is_global) w.setZero(p.num_dofs());
-  else w.setZero(p.size());
+SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, SolveOutcome& out) {
+  out.r = initial_reactions(req, p.size());
+  Vector& w = Form::is_global ? out.v : out.u;
+  w.setZero(Form::is_global ? p.num_dofs() : p.size());
+  auto run = [&](auto& solver) {
+    const SolverInfo& info = solver.compute(p).solve(out.r, w);
+    if constexpr (Form::is_global)  // the registry need not factorise M again
+      out.reduced_q_norm = solver.form().free_velocity_norm();
+    return info;
+  };
   if (kind == IpmKind::Socqp) {
     ipm::SocqpIpm<Form> solver(ipm_settings_from<ipm::IpmSettings>(req));
-    SolverInfo info = solver.compute(p).solve(r, w);
+    SolverInfo info = run(solver);
     info.message = "associated problem (s = 0) " + info.message;
     if (info.converged() && !(solver.coulomb_error() <= req.common.tol)) {
       info.status = Status::Stalled;
@@ -103,14 +109,14 @@ SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, Vector&
     s.recover = req.settings.boolean("recover");
     s.recentre = req.settings.boolean("recentre");
     ipm::NonsmoothIpm<Form> solver(s);
-    return solver.compute(p).solve(r, w);
+    return run(solver);
   }
   auto s = ipm_settings_from<ipm::AclmSettings>(req);
   s.variant = kind == IpmKind::AclmNewton ? ipm::AclmVariant::Newton : ipm::AclmVariant::FixedPoint;
   s.max_outer = int(req.settings.integer("max_outer"));
   s.inner_ratio = req.settings.real("inner_ratio");
   ipm::AclmSolver<Form> solver(s);
-  return solver.compute(p).solve(r, w);
+  return run(solver);
 }
 
 inline void require_friction(int d) {
@@ -150,7 +156,7 @@ inline LocalSolveFunction ipm_local(IpmKind kind) {
     require_friction(p.d);
     SolveOutcome out;
     dispatch_ipm_form<ipm::LocalForm>(p.d, p.size() <= kDenseKktMaxSize, [&](auto form) {
-      out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out.r, out.u);
+      out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out);
     });
     return out;
   };
@@ -166,7 +172,7 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
       });
     const bool dense = p.num_dofs() + p.size() <= kDenseKktMaxSize;
     dispatch_ipm_form<ipm::GlobalForm>(p.d, dense, [&](auto form) {
-      out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out.r, out.v);
+      out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out);
     });
     return out;
   };

@@ -13,6 +13,7 @@
 #include <fcsolve/solvers/registry.hpp>
 
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -52,6 +53,8 @@ SolveOutcome run(const View& p, const SolveRequest& req, bool hybrid, Vector Sol
   out.r = initial_reactions(req, p.size());
   (out.*second).resize(second_size);
   out.info = solver.solve(out.r, out.*second);
+  if constexpr (std::is_same_v<View, GlobalProblemView>)
+    out.reduced_q_norm = solver.free_velocity_norm();  // the registry need not factorise M again
   return out;
 }
 
