@@ -86,7 +86,8 @@ template <class Form, class View>
 SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, SolveOutcome& out) {
   out.r = initial_reactions(req, p.size());
   Vector& w = Form::is_global ? out.v : out.u;
-  w.setZero(Form::is_global ? p.num_dofs() : p.size());
+  if constexpr (Form::is_global) w.setZero(p.num_dofs());
+  else w.setZero(p.size());
   auto run = [&](auto& solver) {
     const SolverInfo& info = solver.compute(p).solve(out.r, w);
     if constexpr (Form::is_global)  // the registry need not factorise M again
