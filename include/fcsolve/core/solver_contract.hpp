@@ -16,9 +16,11 @@
 //   static_assert(fcsolve::satisfies_solver_contract_v<S, LocalProblemView>);
 #pragma once
 
+#include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/types.hpp>
 
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -53,6 +55,24 @@ struct checks<
                          const typename S::Settings&>> {};
 
 }  // namespace contract_detail
+
+/// The argument check every solve() of the contract starts with: compute()
+/// was called (`computed`; UsageError naming `solver` otherwise), r (the
+/// warm start) has m finite entries and the second vector (`second`: "u" or
+/// "v") n entries (InvalidProblem naming the vector otherwise).
+inline void check_solve_arguments(const char* solver, bool computed,
+                                  const Eigen::Ref<const Vector>& r, Index m,
+                                  const Eigen::Ref<const Vector>& second_vector, Index n,
+                                  const char* second) {
+  if (!computed) throw UsageError(std::string(solver) + "::solve() called before compute()");
+  if (r.size() != m)
+    throw InvalidProblem("r", "expected " + std::to_string(m) + " entries, got " +
+                                  std::to_string(r.size()));
+  if (second_vector.size() != n)
+    throw InvalidProblem(second, "expected " + std::to_string(n) + " entries, got " +
+                                     std::to_string(second_vector.size()));
+  if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+}
 
 /// True when S follows the solver contract on problems of type Problem.
 template <class S, class Problem>

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/ipm/interior_point.hpp>
@@ -88,13 +89,7 @@ class IpmSolverBase {
   SolverInfo& begin_solve(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& w) {
     require_computed();
     const Index m = form_->size(), n = Form::is_global ? form_->primal_size() : m;
-    if (r.size() != m)
-      throw InvalidProblem("r", "expected " + std::to_string(m) + " entries, got " +
-                                    std::to_string(r.size()));
-    if (w.size() != n)
-      throw InvalidProblem(Form::is_global ? "v" : "u", "expected " + std::to_string(n) +
-                                                            " entries, got " + std::to_string(w.size()));
-    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    fcsolve::check_solve_arguments("interior-point solver", true, r, m, w, n, Form::is_global ? "v" : "u");
     stats_ = IpmStatistics();
     const double setup = info_.setup_seconds;
     info_ = SolverInfo();

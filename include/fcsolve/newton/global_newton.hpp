@@ -14,6 +14,7 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/formulation/one_contact_function.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
 #include <fcsolve/newton/contact_residual.hpp>
@@ -87,11 +88,8 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
   /// r: warm start in, solution out (the best iterate if the solve fails);
   /// v: out, starting from M^-1 (H r + f).
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> v) {
-    if (!problem_) throw UsageError("GlobalNewton::solve() called before compute()");
-    if (r.size() != problem_->size() || v.size() != problem_->num_dofs())
-      throw InvalidProblem("r", "r must have " + std::to_string(problem_->size()) + " and v " +
-                                    std::to_string(problem_->num_dofs()) + " entries");
-    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    fcsolve::check_solve_arguments("GlobalNewton", problem_.has_value(), r, problem_ ? problem_->size() : 0,
+                          v, problem_ ? problem_->num_dofs() : 0, "v");
     Stopwatch clock;
     r_ = r;
     v_ = reduction_.velocity(r_);

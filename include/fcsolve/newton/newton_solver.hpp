@@ -14,6 +14,7 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/formulation/one_contact_function.hpp>
 #include <fcsolve/local/alart_curnier_backtracking.hpp>
 #include <fcsolve/newton/contact_residual.hpp>
@@ -75,10 +76,8 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
   /// r: warm start in, solution out (the best iterate if the solve fails);
   /// u = W r + q on return.
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
-    if (!problem_) throw UsageError("Newton::solve() called before compute()");
-    if (r.size() != problem_->size() || u.size() != problem_->size())
-      throw InvalidProblem("r", "r and u must have " + std::to_string(problem_->size()) + " entries");
-    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    const Index m = problem_ ? problem_->size() : 0;
+    fcsolve::check_solve_arguments("Newton", problem_.has_value(), r, m, u, m, "u");
     Stopwatch clock;
     r_ = r;
     update_velocity();

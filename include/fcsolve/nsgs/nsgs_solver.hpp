@@ -30,14 +30,15 @@
 // smallest full error seen, and info().error is that error.
 #pragma once
 
-#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/local/enumerative.hpp>
 #include <fcsolve/local/one_contact.hpp>
 #include <fcsolve/nsgs/contact_colouring.hpp>
 #include <fcsolve/nsgs/nsgs_settings.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/validate.hpp>
 #include <fcsolve/storage/storage.hpp>
@@ -483,15 +484,8 @@ class Nsgs {
   }
 
   void check_solve_arguments(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& u) const {
-    if (!problem_) throw UsageError("Nsgs::solve() called before compute()");
-    const Index m = problem_->size();
-    if (r.size() != m)
-      throw InvalidProblem("r", "expected " + std::to_string(m) + " entries, got " +
-                                    std::to_string(r.size()));
-    if (u.size() != m)
-      throw InvalidProblem("u", "expected " + std::to_string(m) + " entries, got " +
-                                    std::to_string(u.size()));
-    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    const Index m = problem_ ? problem_->size() : 0;
+    fcsolve::check_solve_arguments("Nsgs", problem_.has_value(), r, m, u, m, "u");
     if (settings_.threads < 1)
       throw UsageError("NSGS: threads must be >= 1, got " + std::to_string(settings_.threads));
     if (!(settings_.omega > 0 && settings_.omega < 2))

@@ -23,14 +23,15 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
-#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/formulation/alart_curnier.hpp>
 #include <fcsolve/newton/newton_solver.hpp>
 #include <fcsolve/ppa/proximal_point_settings.hpp>
 #include <fcsolve/ppa/proximal_problem.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/validate.hpp>
 #include <fcsolve/storage/storage.hpp>
 
@@ -82,11 +83,8 @@ class ProximalPoint {
   /// r: warm start in, solution out (the best iterate if the solve fails);
   /// u = W r + q on return.
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
-    if (!problem_) throw UsageError("ProximalPoint::solve() called before compute()");
-    const Index m = problem_->size();
-    if (r.size() != m || u.size() != m)
-      throw InvalidProblem("r", "r and u must have " + std::to_string(m) + " entries");
-    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    const Index m = problem_ ? problem_->size() : 0;
+    fcsolve::check_solve_arguments("ProximalPoint", problem_.has_value(), r, m, u, m, "u");
     check_settings();
     Stopwatch clock;
     const double setup = info_.setup_seconds;

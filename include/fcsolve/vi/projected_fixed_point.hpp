@@ -13,10 +13,11 @@
 // ||r - P_K(r - F(r))|| / ||q|| comes for free every iteration.
 #pragma once
 
-#include <fcsolve/problem/error.hpp>
 #include <fcsolve/core/exceptions.hpp>
+#include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
+#include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/validate.hpp>
 
@@ -122,12 +123,8 @@ class ProjectedFixedPoint {
 
  private:
   void check_solve_arguments(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& u) const {
-    if (!problem_) throw UsageError("ProjectedFixedPoint::solve() called before compute()");
-    const Index m = problem_->size();
-    if (r.size() != m || u.size() != m)
-      throw InvalidProblem("r", "expected r and u with " + std::to_string(m) + " entries, got " +
-                                    std::to_string(r.size()) + " and " + std::to_string(u.size()));
-    if (!r.allFinite()) throw InvalidProblem("r", "warm start is not finite");
+    const Index m = problem_ ? problem_->size() : 0;
+    fcsolve::check_solve_arguments("ProjectedFixedPoint", problem_.has_value(), r, m, u, m, "u");
   }
 
   /// F = u~(x) = W x + q + g(W x + q); returns the FCLIB error of x. u_ = W x + q.
