@@ -17,9 +17,9 @@ enum class Status {
 };
 
 /// The stable token of a status, as the CLI (text and JSON), the Python
-/// `Result.status` and the campaign CSVs write it. NumericalError stays
-/// "nan" although ipm::to_string(IpmExit::NumericalError) reads "numerical
-/// error": the token is data, not prose. python/tests/test_solve.py, the
+/// `Result.status` and the campaign CSVs write it (ipm::IpmExit's tokens
+/// follow it). NumericalError is "nan": the token is data, not prose, and
+/// python/tests/test_solve.py, the
 /// campaign's failure classes (campaign/results.py, tasks.py, charts.py), the
 /// Siconos runner's output and every results.csv already written use "nan";
 /// renaming it would split one failure class in two across old and new runs.

@@ -34,7 +34,7 @@ struct AclmSettings : IpmSettings {
 
 template <class Form>
 class AclmSolver : public IpmSolverBase<Form> {
-  static constexpr int N = Form::dim;
+  static constexpr int D = Form::dim;
 
  public:
   using Settings = AclmSettings;
@@ -200,7 +200,7 @@ class AclmSolver : public IpmSolverBase<Form> {
   /// s_a = ||u_T^a|| of u.
   Vector tangential_speeds_of_u(const Vector& u) const {
     Vector s(this->form_->num_contacts());
-    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<N - 1>(a * N + 1).norm();
+    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<D - 1>(a * D + 1).norm();
     return s;
   }
 
@@ -225,18 +225,18 @@ class AclmSolver : public IpmSolverBase<Form> {
   /// (I - F'(s)) ds = F(s) - s by GMRES; false if it made no progress.
   bool newton_direction(const Vector& u, const Vector& rhs, Vector& ds) {
     const Index nc = this->form_->num_contacts();
-    std::vector<Vec<N>, Eigen::aligned_allocator<Vec<N>>> n(std::size_t(nc), Vec<N>::Zero());
+    std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> n(std::size_t(nc), Vec<D>::Zero());
     const double scale = std::max(u.cwiseAbs().maxCoeff(), 1e-300);
     for (Index a = 0; a < nc; ++a) {
-      const auto ut = u.template segment<N - 1>(a * N + 1);
+      const auto ut = u.template segment<D - 1>(a * D + 1);
       const double nt = ut.norm();
-      if (nt > 1e-12 * scale) n[std::size_t(a)].template tail<N - 1>() = ut / nt;
+      if (nt > 1e-12 * scale) n[std::size_t(a)].template tail<D - 1>() = ut / nt;
     }
     Vector dx;
     auto apply = [&](const Vector& p, Vector& out) {
       this->engine_->frozen_sensitivity(p, dx, settings_.refinement);
       out = p;
-      for (Index a = 0; a < nc; ++a) out[a] -= n[std::size_t(a)].dot(dx.template segment<N>(a * N));
+      for (Index a = 0; a < nc; ++a) out[a] -= n[std::size_t(a)].dot(dx.template segment<D>(a * D));
     };
     const int products = gmres(apply, rhs, ds, 1e-3, 60, 30);
     return products > 0 && ds.allFinite();

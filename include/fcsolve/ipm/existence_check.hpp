@@ -51,7 +51,7 @@ namespace detail {
 template <class Cone, class Backend>
 ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
                                 const Eigen::Ref<const Vector>& mu, double tol) {
-  constexpr int N = Cone::dim;
+  constexpr int D = Cone::dim;
   const Index n = Ht_rows.rows(), m = Ht_rows.cols(), nc = mu.size();
   double h = 0;
   for (Index j = 0; j < m; ++j) h = std::max(h, Ht_rows.col(j).norm());
@@ -68,12 +68,12 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
       t.emplace_back(int(it.row()), int(j), it.value() / h);
     if (w[j] != 0) t.emplace_back(int(tr), int(j), w[j] / omega);
   }
-  for (Index a = 0; a < nc; ++a) t.emplace_back(int(xr), int(a * N), -1.0);
-  t.emplace_back(int(tr), int(nc * N), 1.0);
-  t.emplace_back(int(xr), int(nc * N), -1.0);
+  for (Index a = 0; a < nc; ++a) t.emplace_back(int(xr), int(a * D), -1.0);
+  t.emplace_back(int(tr), int(nc * D), 1.0);
+  t.emplace_back(int(xr), int(nc * D), -1.0);
   GlobalProblem g;
-  g.d = N;
-  g.H.resize(n + 2, m + N);
+  g.d = D;
+  g.H.resize(n + 2, m + D);
   g.H.setFromTriplets(t.begin(), t.end());
   g.H.makeCompressed();
   g.M.resize(n + 2, n + 2);
@@ -81,7 +81,7 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   g.M.makeCompressed();
   g.f = Vector::Zero(n + 2);
   g.f[xr] = 1;
-  g.w = Vector::Zero(m + N);
+  g.w = Vector::Zero(m + D);
   g.mu.resize(nc + 1);
   g.mu.head(nc) = mu;
   g.mu[nc] = 1;
@@ -102,7 +102,7 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   const Vector u = Ht_rows.transpose() * rep.witness + w;
   rep.margin = std::numeric_limits<double>::infinity();
   for (Index a = 0; a < nc; ++a)
-    rep.margin = std::min(rep.margin, u[a * N] - mu[a] * u.template segment<N - 1>(a * N + 1).norm());
+    rep.margin = std::min(rep.margin, u[a * D] - mu[a] * u.template segment<D - 1>(a * D + 1).norm());
   const double scale = u.size() ? u.cwiseAbs().maxCoeff() : 0.0;
   rep.slater = tau > 0 && rep.margin > 1e-9 * scale;
   return rep;

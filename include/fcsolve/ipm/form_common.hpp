@@ -24,19 +24,19 @@
 namespace fcsolve {
 namespace ipm {
 
-/// The Coulomb cone policy of a contact dimension N (2 or 3).
-template <int N>
-using CoulombCone = std::conditional_t<N == 3, Coulomb3D, Coulomb2D>;
+/// The Coulomb cone policy of a contact dimension D (2 or 3).
+template <int D>
+using CoulombCone = std::conditional_t<D == 3, Coulomb3D, Coulomb2D>;
 
-template <int N>
+template <int D>
 struct ContactState {
-  std::vector<NtScaling<N>, Eigen::aligned_allocator<NtScaling<N>>> scaling;
+  std::vector<NtScaling<D>, Eigen::aligned_allocator<NtScaling<D>>> scaling;
   /// n_a = (0, x_T / ||x_T||): the (sub)gradient of ||x_T|| when s is
   /// coupled (NIPM); zero when s is frozen. P_a = I + e n_a^T.
-  std::vector<Vec<N>, Eigen::aligned_allocator<Vec<N>>> normal;
+  std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> normal;
   void resize(Index nc) {
     scaling.resize(std::size_t(nc));
-    normal.assign(std::size_t(nc), Vec<N>::Zero());
+    normal.assign(std::size_t(nc), Vec<D>::Zero());
   }
 };
 
@@ -53,47 +53,47 @@ struct Iterate {
 
 /// Sum over contacts of ||r - P_K(r - u~)||^2 with u~ = u + (mu s, 0, ...):
 /// the natural map of the problem with s frozen (ACLM 2011, problem (13)).
-template <int N>
+template <int D>
 double frozen_natural_map_squared(const Vector& r, const Vector& u, const Eigen::Ref<const Vector>& mu,
                                   const Vector& s) {
-  using Cone = CoulombCone<N>;
+  using Cone = CoulombCone<D>;
   double sum = 0;
   for (Index a = 0; a < mu.size(); ++a) {
-    Vec<N> ut = u.template segment<N>(a * N);
+    Vec<D> ut = u.template segment<D>(a * D);
     ut[0] += mu[a] * s[a];
-    const Vec<N> ra = r.template segment<N>(a * N);
-    sum += (ra - Cone::project(Vec<N>(ra - ut), mu[a])).squaredNorm();
+    const Vec<D> ra = r.template segment<D>(a * D);
+    sum += (ra - Cone::project(Vec<D>(ra - ut), mu[a])).squaredNorm();
   }
   return sum;
 }
 
 /// Squared natural map of (r, u): Coulomb's (core/error.hpp) or, with
 /// `frozen`, that of the problem with s frozen.
-template <int N>
+template <int D>
 double natural_map_squared(const Vector& r, const Vector& u, const Eigen::Ref<const Vector>& mu,
                            const Vector& s, bool frozen) {
-  return frozen ? frozen_natural_map_squared<N>(r, u, mu, s)
-                : natural_map_norms<CoulombCone<N>>(r, u, mu).squared_sum;
+  return frozen ? frozen_natural_map_squared<D>(r, u, mu, s)
+                : natural_map_norms<CoulombCone<D>>(r, u, mu).squared_sum;
 }
 
 /// r = D^-1 y: the reactions of the Lorentz-coordinate y.
-template <int N>
+template <int D>
 void reaction_from_lorentz(const Vector& y, const Eigen::Ref<const Vector>& mu, Vector& r) {
   r = y;
-  for (Index a = 0; a < mu.size(); ++a) r[a * N] /= mu[a];
+  for (Index a = 0; a < mu.size(); ++a) r[a * D] /= mu[a];
 }
 
 /// Adds s_a to the normal entry of each contact block of z (z += E s).
-template <int N>
+template <int D>
 void add_normal(Vector& z, const Vector& s) {
-  for (Index a = 0; a < s.size(); ++a) z[a * N] += s[a];
+  for (Index a = 0; a < s.size(); ++a) z[a * D] += s[a];
 }
 
 /// dz_a += e (n_a . dz_a): applies P = I + e n^T contact by contact.
-template <int N>
-void apply_coupling(const ContactState<N>& cs, Vector& z) {
+template <int D>
+void apply_coupling(const ContactState<D>& cs, Vector& z) {
   for (std::size_t a = 0; a < cs.normal.size(); ++a)
-    z[Index(a) * N] += cs.normal[a].dot(z.template segment<N>(Index(a) * N));
+    z[Index(a) * D] += cs.normal[a].dot(z.template segment<D>(Index(a) * D));
 }
 
 }  // namespace ipm

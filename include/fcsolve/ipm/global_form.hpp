@@ -16,8 +16,7 @@
 #pragma once
 
 #include <fcsolve/core/exceptions.hpp>
-#include <fcsolve/ipm/form_common.hpp>
-#include <fcsolve/ipm/kkt_system.hpp>
+#include <fcsolve/ipm/form_base.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/reduction.hpp>
@@ -25,24 +24,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 namespace fcsolve {
 namespace ipm {
 
 template <class ConeType, class Factorization>
-class GlobalForm {
-  static_assert(ConeType::dim == 2 || ConeType::dim == 3,
-                "the interior-point forms map a Coulomb cone (d = 2 or 3) onto the Lorentz cone");
+class GlobalForm : public FormBase<ConeType, Factorization, GlobalProblemView, -1> {
+  using Base = FormBase<ConeType, Factorization, GlobalProblemView, -1>;
+  using Base::m_, Base::nc_, Base::p_;
 
  public:
-  using Cone = ConeType;
-  static constexpr int dim = Cone::dim;
-  /// Order of the Lorentz cone L^N the iterates live in (N = d).
-  static constexpr int N = dim;
-  using View = GlobalProblemView;
+  using Base::D, Base::error_scale, Base::reaction;
   static constexpr bool is_global = true;
-  using Backend = typename Factorization::Backend;
 
   /// Scales H, builds the augmented pattern, factorises M once (free
   /// velocity, the FCLIB error scale). Throws InvalidProblem if M is singular.
@@ -52,13 +45,13 @@ class GlobalForm {
     m_ = p.size();
     nc_ = p.num_contacts();
     reduction_.compute(p, /*form_W=*/false);
-    q_norm_ = reduction_.free_velocity_norm();
+    this->q_norm_ = reduction_.free_velocity_norm();
     Hs_ = SparseMatrix(p.H);
-    for (Index a = 0; a < nc_; ++a) Hs_.col(a * N) /= p.mu[a];
+    for (Index a = 0; a < nc_; ++a) Hs_.col(a * D) /= p.mu[a];
     Hs_.makeCompressed();
     w0_ = p.w;
-    for (Index a = 0; a < nc_; ++a) w0_[a * N] /= p.mu[a];
-    symmetric_data_ = relative_asymmetry(p.M) <= kSymmetryRoundoff;
+    for (Index a = 0; a < nc_; ++a) w0_[a * D] /= p.mu[a];
+    this->symmetric_data_ = relative_asymmetry(p.M) <= kSymmetryRoundoff;
     // A0 = [M -Hs; -Hs^T 0], G = [0; I].
     std::vector<Eigen::Triplet<double, int>> t;
     t.reserve(std::size_t(p.M.nonZeros() + 2 * Hs_.nonZeros()));
@@ -74,7 +67,7 @@ class GlobalForm {
     t.clear();
     for (Index j = 0; j < m_; ++j) t.emplace_back(int(n_ + j), int(j), 1.0);
     G.setFromTriplets(t.begin(), t.end());
-    kkt_.compute(A0, G, symmetric_data_);
+    this->kkt_.compute(A0, G, this->symmetric_data_);
     // Units of the regularisation: mean diagonal of M, and theta^2, the
     // typical diagonal of W = Hs^T M^-1 Hs (the contact block's scale).
     double tr = 0;
@@ -83,9 +76,9 @@ class GlobalForm {
         if (it.row() == j) tr += std::abs(it.value());
     const double hn = Hs_.squaredNorm();
     const double mass = tr > 0 ? tr / double(n_) : 1.0;
-    theta_ = (tr > 0 && hn > 0) ? std::sqrt(hn / tr) : 1.0;
-    kkt_.regularization_weights().head(n_).setConstant(mass);
-    kkt_.regularization_weights().tail(m_).setConstant(-theta_ * theta_);
+    this->theta_ = (tr > 0 && hn > 0) ? std::sqrt(hn / tr) : 1.0;
+    this->kkt_.regularization_weights().head(n_).setConstant(mass);
+    this->kkt_.regularization_weights().tail(m_).setConstant(-this->theta_ * this->theta_);
     rhs_.resize(n_ + m_);
     sol_.resize(n_ + m_);
     r_.resize(m_);
@@ -94,18 +87,10 @@ class GlobalForm {
     Hr_.resize(n_);
   }
 
-  const GlobalProblemView& view() const { return *p_; }
   Index primal_size() const { return n_; }
-  Index size() const { return m_; }
-  Index num_contacts() const { return nc_; }
-  const VectorMap& mu() const { return p_->mu; }
-  bool symmetric_data() const { return symmetric_data_; }
-  double initial_scaling() const { return theta_; }
   double diagonal_scale() const { return 1.0; }  // weights carry the units
-  double error_scale() const { return q_norm_ > 0 ? q_norm_ : 1.0; }
   /// ||H^T M^-1 f + w|| (0 allowed), from the factorisation of M in compute().
-  double free_velocity_norm() const { return q_norm_; }
-  KktSystem<N, Factorization>& kkt() { return kkt_; }
+  double free_velocity_norm() const { return this->q_norm_; }
   /// M factorised once: v = M^-1 (H r + f).
   const GlobalReduction<EigenBackend>& reduction() const { return reduction_; }
 
@@ -116,47 +101,25 @@ class GlobalForm {
     r_d -= p_->f;
     r_p.noalias() = Hs_.transpose() * it.v;
     r_p += w0_ - it.x;
-    add_normal<N>(r_p, it.s);
-  }
-
-  /// Contact blocks -P_a^-1 T_a^2; LDL^T iff M is symmetric and s frozen.
-  bool factorize(const ContactState<N>& cs, bool coupled, double delta) {
-    kkt_.set_symmetric(symmetric_data_ && !coupled);
-    auto& B = kkt_.blocks();
-    for (std::size_t a = 0; a < B.size(); ++a) {
-      const Mat<N>& T = cs.scaling[a].T;
-      B[a].noalias() = -(T * T);
-      if (coupled) {
-        const Eigen::Matrix<double, 1, N> row = cs.normal[a].transpose() * B[a];
-        B[a].row(0) -= row;
-      }
-    }
-    return kkt_.factorize(delta);
-  }
-
-  /// Uniform scaling T = theta I (initial point).
-  bool factorize_uniform(double theta, double delta) {
-    kkt_.set_symmetric(symmetric_data_);
-    for (auto& B : kkt_.blocks()) B = -theta * theta * Mat<N>::Identity();
-    return kkt_.factorize(delta);
+    add_normal<D>(r_p, it.s);
   }
 
   /// The Newton direction for the complementarity right-hand side xi
   /// (T^-1 dx + T dy = xi) and residuals r_d, r~p (header comment).
-  void direction(const ContactState<N>& cs, const Vector& xi, const Vector& r_d,
+  void direction(const ContactState<D>& cs, const Vector& xi, const Vector& r_d,
                  const Vector& rp_tilde, Iterate& d, int refinement) {
     rhs_.head(n_) = -r_d;
     for (Index a = 0; a < nc_; ++a) {
-      Vec<N> txi = cs.scaling[std::size_t(a)].T * xi.template segment<N>(a * N);
+      Vec<D> txi = cs.scaling[std::size_t(a)].T * xi.template segment<D>(a * D);
       txi[0] -= cs.normal[std::size_t(a)].dot(txi);
-      rhs_.template segment<N>(n_ + a * N) = rp_tilde.template segment<N>(a * N) - txi;
+      rhs_.template segment<D>(n_ + a * D) = rp_tilde.template segment<D>(a * D) - txi;
     }
-    kkt_.solve(rhs_, sol_, refinement);
+    this->kkt_.solve(rhs_, sol_, refinement);
     d.v = sol_.head(n_);
     d.y = sol_.tail(m_);
     d.x.noalias() = Hs_.transpose() * d.v;
     d.x += rp_tilde;
-    apply_coupling<N>(cs, d.x);
+    apply_coupling<D>(cs, d.x);
   }
 
   /// Same with T = theta I, P = I (initial point).
@@ -164,15 +127,13 @@ class GlobalForm {
                          Iterate& d) {
     rhs_.head(n_) = -r_d;
     rhs_.tail(m_) = r_p - theta * xi;
-    kkt_.solve(rhs_, sol_, 2);
+    this->kkt_.solve(rhs_, sol_, 2);
     d.v = sol_.head(n_);
     d.y = sol_.tail(m_);
     d.x.noalias() = Hs_.transpose() * d.v;
     d.x += r_p;
   }
 
-  /// r = D^-1 y.
-  void reaction(const Iterate& it, Vector& r) const { reaction_from_lorentz<N>(it.y, p_->mu, r); }
   /// u = H^T v + w (the data's H, not the scaled one).
   void velocity(const Iterate& it, Vector& u) const {
     u.noalias() = p_->H.transpose() * it.v;
@@ -187,7 +148,7 @@ class GlobalForm {
     const Vector Mv = p_->M * v, Hr = p_->H * r;
     const double denom = std::max({p_->f.norm(), Mv.norm(), Hr.norm()});
     const double equil = (Mv - Hr - p_->f).norm() / (denom > 0 ? denom : 1.0);
-    return std::max(std::sqrt(natural_map_squared<N>(r, u, p_->mu, s, frozen)) / error_scale(),
+    return std::max(std::sqrt(natural_map_squared<D>(r, u, p_->mu, s, frozen)) / error_scale(),
                     equil);
   }
 
@@ -197,7 +158,7 @@ class GlobalForm {
   double error(const Iterate& it, bool frozen) {
     reaction(it, r_);
     velocity(it, u_);
-    const double comp = natural_map_squared<N>(r_, u_, p_->mu, it.s, frozen);
+    const double comp = natural_map_squared<D>(r_, u_, p_->mu, it.s, frozen);
     Mv_.noalias() = p_->M * it.v;
     Hr_.noalias() = p_->H * r_;
     const double denom = std::max({p_->f.norm(), Mv_.norm(), Hr_.norm()});
@@ -206,17 +167,13 @@ class GlobalForm {
   }
 
  private:
-  std::optional<GlobalProblemView> p_;
-  Index n_ = 0, m_ = 0, nc_ = 0;
+  Index n_ = 0;
   // M once, for ||q|| and v = M^-1 (H r + f): Eigen's simplicial LDL^T (or
   // LU) has less set-up cost than CHOLMOD's supernodal one on the diagonal
   // or block-diagonal M of multibody scenes, and runs once.
   GlobalReduction<EigenBackend> reduction_;
   SparseMatrix Hs_;
   Vector w0_;
-  KktSystem<N, Factorization> kkt_;
-  bool symmetric_data_ = true;
-  double q_norm_ = 0, theta_ = 1;
   Vector rhs_, sol_, r_, u_, Mv_, Hr_;
 };
 

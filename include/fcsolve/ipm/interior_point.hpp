@@ -71,15 +71,18 @@ enum class IpmExit {
   Stopped,         ///< the callback asked to stop
 };
 
+/// The token of an engine exit, written like Status's (core/status.hpp):
+/// the exits a Status also has read the same ("nan" included), the others
+/// are hyphenated the same way.
 inline const char* to_string(IpmExit e) {
   switch (e) {
     case IpmExit::Converged: return "converged";
     case IpmExit::MaxIterations: return "max-iterations";
     case IpmExit::TimeLimit: return "timeout";
-    case IpmExit::SmallStep: return "small steps";
-    case IpmExit::NoProgress: return "no progress";
-    case IpmExit::SlowProgress: return "slow progress";
-    case IpmExit::NumericalError: return "numerical error";
+    case IpmExit::SmallStep: return "small-steps";
+    case IpmExit::NoProgress: return "no-progress";
+    case IpmExit::SlowProgress: return "slow-progress";
+    case IpmExit::NumericalError: return "nan";
     case IpmExit::Stopped: return "stopped";
   }
   return "?";
@@ -102,7 +105,7 @@ struct IpmReport {
 template <class Form>
 class InteriorPoint {
  public:
-  static constexpr int N = Form::dim;
+  static constexpr int D = Form::dim;
 
   explicit InteriorPoint(Form& form) : form_(form) {
     const Index n = form.primal_size(), m = form.size(), nc = form.num_contacts();
@@ -118,7 +121,7 @@ class InteriorPoint {
     dys_.resize(m);
   }
 
-  /// Mehrotra's starting point adapted to L^N: the least-squares point of the
+  /// Mehrotra's starting point adapted to L^d: the least-squares point of the
   /// linear equations with T = theta I, each cone block shifted into int L by
   /// a common amount (Mehrotra 1992, sec. 7). `it.s` holds the frozen s (or
   /// the initial s when coupled; replaced by ||x_T|| then).
@@ -136,16 +139,16 @@ class InteriorPoint {
     it.v = d_.v;
     double dx = 0, dy = 0;
     for (Index a = 0; a < nc; ++a) {
-      dx = std::max(dx, -1.5 * lorentz_min_eigenvalue<N>(d_.x.template segment<N>(a * N)));
-      dy = std::max(dy, -1.5 * lorentz_min_eigenvalue<N>(d_.y.template segment<N>(a * N)));
+      dx = std::max(dx, -1.5 * lorentz_min_eigenvalue<D>(d_.x.template segment<D>(a * D)));
+      dy = std::max(dy, -1.5 * lorentz_min_eigenvalue<D>(d_.y.template segment<D>(a * D)));
     }
     Vector xs = d_.x, ys = d_.y;
-    add_normal<N>(xs, Vector::Constant(nc, dx));
-    add_normal<N>(ys, Vector::Constant(nc, dy));
+    add_normal<D>(xs, Vector::Constant(nc, dx));
+    add_normal<D>(ys, Vector::Constant(nc, dy));
     double trace_x = 0, trace_y = 0;
     for (Index a = 0; a < nc; ++a) {
-      trace_x += xs[a * N];
-      trace_y += ys[a * N];
+      trace_x += xs[a * D];
+      trace_y += ys[a * D];
     }
     const double xy = xs.dot(ys);
     if (xy > 0 && trace_x > 0 && trace_y > 0) {
@@ -157,20 +160,20 @@ class InteriorPoint {
     if (!(dy > 0)) dy = 1;
     it.x = d_.x;
     it.y = d_.y;
-    add_normal<N>(it.x, Vector::Constant(nc, dx));
-    add_normal<N>(it.y, Vector::Constant(nc, dy));
+    add_normal<D>(it.x, Vector::Constant(nc, dx));
+    add_normal<D>(it.y, Vector::Constant(nc, dy));
     if (coupled)
-      for (Index a = 0; a < nc; ++a) it.s[a] = it.x.template segment<N - 1>(a * N + 1).norm();
+      for (Index a = 0; a < nc; ++a) it.s[a] = it.x.template segment<D - 1>(a * D + 1).norm();
   }
 
   /// Moves a (near-)boundary point into int L: every block gets at least
   /// the smallest spectral value `min_x` (resp. `min_y`).
   static void push_inside(Iterate& it, double min_x, double min_y) {
     for (Index a = 0; a < it.s.size(); ++a) {
-      auto xa = it.x.template segment<N>(a * N);
-      auto ya = it.y.template segment<N>(a * N);
-      xa[0] += std::max(0.0, min_x - lorentz_min_eigenvalue<N>(xa));
-      ya[0] += std::max(0.0, min_y - lorentz_min_eigenvalue<N>(ya));
+      auto xa = it.x.template segment<D>(a * D);
+      auto ya = it.y.template segment<D>(a * D);
+      xa[0] += std::max(0.0, min_x - lorentz_min_eigenvalue<D>(xa));
+      ya[0] += std::max(0.0, min_y - lorentz_min_eigenvalue<D>(ya));
     }
   }
 
@@ -206,13 +209,13 @@ class InteriorPoint {
     xi_.setZero();
     r_d_.setZero();
     rp_tilde_.setZero();
-    add_normal<N>(rp_tilde_, p);
+    add_normal<D>(rp_tilde_, p);
     form_.direction(state_, xi_, r_d_, rp_tilde_, d_, refinement);
     dx = d_.x;
   }
 
  private:
-  Vec<N> lambda(Index a) const { return state_.scaling[std::size_t(a)].lambda; }
+  Vec<D> lambda(Index a) const { return state_.scaling[std::size_t(a)].lambda; }
 
   void start_progress() {
     best_error_ = std::numeric_limits<double>::infinity();
@@ -226,7 +229,7 @@ class InteriorPoint {
     form_.residuals(it, r_d_, r_p_);
     if (coupled)
       for (Index a = 0; a < form_.num_contacts(); ++a)
-        r_s_[a] = it.s[a] - it.x.template segment<N - 1>(a * N + 1).norm();
+        r_s_[a] = it.s[a] - it.x.template segment<D - 1>(a * D + 1).norm();
     return form_.error(it, !coupled);
   }
 
@@ -281,8 +284,8 @@ class InteriorPoint {
   bool update_scaling(Iterate& it, bool coupled, IpmReport& rep) {
     const Index nc = form_.num_contacts();
     for (Index a = 0; a < nc; ++a) {
-      auto xa = it.x.template segment<N>(a * N);
-      auto ya = it.y.template segment<N>(a * N);
+      auto xa = it.x.template segment<D>(a * D);
+      auto ya = it.y.template segment<D>(a * D);
       auto& sc = state_.scaling[std::size_t(a)];
       if (sc.compute(xa, ya)) continue;
       // Rounding put the point on (or past) the boundary: the step kept it
@@ -294,11 +297,11 @@ class InteriorPoint {
     }
     if (coupled)
       for (Index a = 0; a < nc; ++a) {
-        const auto xt = it.x.template segment<N - 1>(a * N + 1);
+        const auto xt = it.x.template segment<D - 1>(a * D + 1);
         const double nt = xt.norm();
         auto& na = state_.normal[std::size_t(a)];
         na.setZero();
-        if (nt > 0) na.template tail<N - 1>() = xt / nt;
+        if (nt > 0) na.template tail<D - 1>() = xt / nt;
       }
     return true;
   }
@@ -323,8 +326,8 @@ class InteriorPoint {
   double affine_step(const Iterate& it, double mu, const EngineRun& opt) {
     const Index nc = form_.num_contacts();
     rp_tilde_ = r_p_;
-    if (opt.coupled) add_normal<N>(rp_tilde_, Vector(-r_s_));
-    for (Index a = 0; a < nc; ++a) xi_.template segment<N>(a * N) = -lambda(a);
+    if (opt.coupled) add_normal<D>(rp_tilde_, Vector(-r_s_));
+    for (Index a = 0; a < nc; ++a) xi_.template segment<D>(a * D) = -lambda(a);
     newton_direction(rp_tilde_, opt);
     const double alpha_aff = std::min(1.0, max_step());
     const double mu_aff = (it.x + alpha_aff * d_.x).dot(it.y + alpha_aff * d_.y) / double(nc);
@@ -335,12 +338,12 @@ class InteriorPoint {
   /// centring plus the second-order term of the affine direction.
   void combined_direction(double sigma, double mu, const EngineRun& opt) {
     for (Index a = 0; a < form_.num_contacts(); ++a) {
-      const Vec<N> lam = lambda(a);
-      Vec<N> rc = -jordan::product<N>(lam, lam) -
-                  jordan::product<N>(Vec<N>(dxs_.template segment<N>(a * N)),
-                                     Vec<N>(dys_.template segment<N>(a * N)));
+      const Vec<D> lam = lambda(a);
+      Vec<D> rc = -jordan::product<D>(lam, lam) -
+                  jordan::product<D>(Vec<D>(dxs_.template segment<D>(a * D)),
+                                     Vec<D>(dys_.template segment<D>(a * D)));
       rc[0] += sigma * mu;
-      xi_.template segment<N>(a * N) = jordan_quotient<N>(lam, rc);
+      xi_.template segment<D>(a * D) = jordan_quotient<D>(lam, rc);
     }
     newton_direction(rp_tilde_, opt);
   }
@@ -366,7 +369,7 @@ class InteriorPoint {
   /// z0 >= (1 + 1e-13) ||z1|| (and z0 > 0): a relative change at rounding level.
   template <class Segment>
   static void keep_inside(Segment&& z) {
-    const double nb = z.template tail<N - 1>().norm();
+    const double nb = z.template tail<D - 1>().norm();
     const double floor_value = std::max(nb * (1 + 1e-13), 1e-300);
     if (z[0] < floor_value) z[0] = floor_value;
   }
@@ -380,11 +383,11 @@ class InteriorPoint {
     const Index nc = form_.num_contacts();
     if (opt.coupled)
       for (Index a = 0; a < nc; ++a)
-        d_.s[a] = state_.normal[std::size_t(a)].dot(d_.x.template segment<N>(a * N)) - r_s_[a];
+        d_.s[a] = state_.normal[std::size_t(a)].dot(d_.x.template segment<D>(a * D)) - r_s_[a];
     for (Index a = 0; a < nc; ++a) {
       const auto& sc = state_.scaling[std::size_t(a)];
-      dxs_.template segment<N>(a * N) = sc.Tinv * d_.x.template segment<N>(a * N);
-      dys_.template segment<N>(a * N) = sc.T * d_.y.template segment<N>(a * N);
+      dxs_.template segment<D>(a * D) = sc.Tinv * d_.x.template segment<D>(a * D);
+      dys_.template segment<D>(a * D) = sc.T * d_.y.template segment<D>(a * D);
     }
   }
 
@@ -393,9 +396,9 @@ class InteriorPoint {
   double max_step() const {
     double alpha = std::numeric_limits<double>::infinity();
     for (Index a = 0; a < form_.num_contacts(); ++a) {
-      const Vec<N> lam = lambda(a);
-      alpha = std::min({alpha, max_step_in_cone<N>(lam, dxs_.template segment<N>(a * N)),
-                        max_step_in_cone<N>(lam, dys_.template segment<N>(a * N))});
+      const Vec<D> lam = lambda(a);
+      alpha = std::min({alpha, max_step_in_cone<D>(lam, dxs_.template segment<D>(a * D)),
+                        max_step_in_cone<D>(lam, dys_.template segment<D>(a * D))});
     }
     return alpha;
   }
@@ -423,9 +426,9 @@ class InteriorPoint {
     const Index nc = form_.num_contacts();
     double total = 0, worst = std::numeric_limits<double>::infinity();
     for (Index a = 0; a < nc; ++a) {
-      const Vec<N> xa = it.x.template segment<N>(a * N) + alpha * d_.x.template segment<N>(a * N);
-      const Vec<N> ya = it.y.template segment<N>(a * N) + alpha * d_.y.template segment<N>(a * N);
-      const double xy = xa.dot(ya), dxy = lorentz_det<N>(xa) * lorentz_det<N>(ya);
+      const Vec<D> xa = it.x.template segment<D>(a * D) + alpha * d_.x.template segment<D>(a * D);
+      const Vec<D> ya = it.y.template segment<D>(a * D) + alpha * d_.y.template segment<D>(a * D);
+      const double xy = xa.dot(ya), dxy = lorentz_det<D>(xa) * lorentz_det<D>(ya);
       total += xy;
       if (!(dxy > 0) || !(xa[0] > 0) || !(ya[0] > 0)) return -1;
       const double g = std::sqrt(dxy), l0 = std::sqrt(0.5 * (g + xy));
@@ -441,8 +444,8 @@ class InteriorPoint {
   double talk_residual(const Iterate& it) const {
     double comp = 0;
     for (Index a = 0; a < form_.num_contacts(); ++a)
-      comp += jordan::product<N>(Vec<N>(it.x.template segment<N>(a * N)),
-                                 Vec<N>(it.y.template segment<N>(a * N)))
+      comp += jordan::product<D>(Vec<D>(it.x.template segment<D>(a * D)),
+                                 Vec<D>(it.y.template segment<D>(a * D)))
                   .squaredNorm();
     double res = std::sqrt(comp);
     if (r_p_.size()) res = std::max(res, r_p_.cwiseAbs().maxCoeff());
@@ -452,7 +455,7 @@ class InteriorPoint {
   }
 
   Form& form_;
-  ContactState<N> state_;
+  ContactState<D> state_;
   Iterate d_, best_;
   Vector r_d_, r_p_, rp_tilde_, r_s_, xi_, dxs_, dys_;
   std::array<double, 4> recent_{};  // best error of the last iterations

@@ -46,7 +46,7 @@ struct IpmStatistics {
 template <class Form>
 class IpmSolverBase {
  public:
-  static constexpr int N = Form::dim;
+  static constexpr int D = Form::dim;
   using Cone = typename Form::Cone;
 
   const SolverInfo& info() const { return info_; }
@@ -59,8 +59,8 @@ class IpmSolverBase {
   void compute_form(const View& p) {
     Stopwatch clock;
     validate(p);
-    if (p.d != N)
-      throw UsageError("interior-point solver compiled for d = " + std::to_string(N) +
+    if (p.d != D)
+      throw UsageError("interior-point solver compiled for d = " + std::to_string(D) +
                        ", problem has d = " + std::to_string(p.d));
     for (Index a = 0; a < p.num_contacts(); ++a)
       if (!(p.mu[a] > 0))
@@ -182,10 +182,10 @@ class IpmSolverBase {
                       double target, double seconds_left) {
     using Backend = typename Form::Backend;
     if constexpr (Form::is_global) {
-      return polish_global<N, Backend>(form_->view(), form_->error_scale(), w, r, frozen, target,
+      return polish_global<D, Backend>(form_->view(), form_->error_scale(), w, r, frozen, target,
                                        s.polish_iterations, seconds_left);
     } else {
-      PolishResult res = polish_local<N, Backend>(form_->view(), r, frozen, target,
+      PolishResult res = polish_local<D, Backend>(form_->view(), r, frozen, target,
                                                   s.polish_iterations, seconds_left);
       w = form_->view().W * r + form_->view().q;
       return res;

@@ -1,6 +1,6 @@
 // The Newton matrix of the interior-point methods,
 //   K = A0 + sum_a G_a B_a G_a^T + delta diag(weights),
-// with A0 (n x n) and G (n x N nc, column block a = G_a) fixed and the N x N
+// with A0 (n x n) and G (n x D nc, column block a = G_a) fixed and the d x d
 // blocks B_a new at every iteration. The global form has the augmented
 //   A0 = [M -Hs; -Hs^T 0],  G = [0; I],  B_a = -P_a^-1 T_a^2
 // (ipm/global_form.hpp), the local form A0 = D^-1 W D^-1, G = I,
@@ -21,30 +21,30 @@
 namespace fcsolve {
 namespace ipm {
 
-template <int N, class Factorization>
+template <int D, class Factorization>
 class KktSystem {
  public:
-  using Block = Mat<N>;
+  using Block = Mat<D>;
   using Blocks = std::vector<Block, Eigen::aligned_allocator<Block>>;
 
   /// Builds the pattern of A0 + G B G^T (+ diagonal) and the scatter maps.
   /// `symmetric`: A0 and every B_a are symmetric (Cholesky) or not (LU).
   void compute(const SparseMatrix& A0, const SparseMatrix& G, bool symmetric) {
     n_ = A0.rows();
-    nc_ = G.cols() / N;
+    nc_ = G.cols() / D;
     A0_ = A0;
     A0_.makeCompressed();
     G_ = G;
     G_.makeCompressed();
-    // Rows touched by each contact and the dense N-column block of G there.
+    // Rows touched by each contact and the dense d-column block of G there.
     row_start_.assign(std::size_t(nc_ + 1), 0);
     rows_.clear();
     g_local_.clear();
     std::vector<Index> mark(std::size_t(n_), -1);
     for (Index a = 0; a < nc_; ++a) {
       const std::size_t first = rows_.size();
-      for (int k = 0; k < N; ++k)
-        for (SparseMatrix::InnerIterator it(G_, a * N + k); it; ++it)
+      for (int k = 0; k < D; ++k)
+        for (SparseMatrix::InnerIterator it(G_, a * D + k); it; ++it)
           if (mark[std::size_t(it.row())] != a) {
             mark[std::size_t(it.row())] = a;
             rows_.push_back(it.row());
@@ -53,12 +53,12 @@ class KktSystem {
       row_start_[std::size_t(a + 1)] = Index(rows_.size());
       const Index nr = Index(rows_.size() - first);
       const std::size_t off = g_local_.size();
-      g_local_.resize(off + std::size_t(nr * N), 0.0);
-      for (int k = 0; k < N; ++k)
-        for (SparseMatrix::InnerIterator it(G_, a * N + k); it; ++it) {
+      g_local_.resize(off + std::size_t(nr * D), 0.0);
+      for (int k = 0; k < D; ++k)
+        for (SparseMatrix::InnerIterator it(G_, a * D + k); it; ++it) {
           const auto pos = std::lower_bound(rows_.begin() + std::ptrdiff_t(first), rows_.end(),
                                             it.row()) - (rows_.begin() + std::ptrdiff_t(first));
-          g_local_[off + std::size_t(k * nr + pos)] = it.value();  // column-major nr x N
+          g_local_[off + std::size_t(k * nr + pos)] = it.value();  // column-major nr x d
         }
       max_rows_ = std::max(max_rows_, nr);
     }
@@ -95,7 +95,7 @@ class KktSystem {
     }
     blocks_.assign(std::size_t(nc_), Block::Zero());
     reg_weight_.setOnes(n_);
-    scratch_.resize(max_rows_ * max_rows_ + 2 * max_rows_ * N);
+    scratch_.resize(max_rows_ * max_rows_ + 2 * max_rows_ * D);
     res_.resize(n_);
     corr_.resize(n_);
     work_.resize(n_);
@@ -123,9 +123,9 @@ class KktSystem {
     for (Index a = 0; a < nc_; ++a) {
       const Index nr = row_start_[a + 1] - row_start_[a];
       if (nr == 0) continue;
-      Eigen::Map<const Eigen::MatrixXd> Ga(local_block(a), nr, N);
-      Eigen::Map<Eigen::MatrixXd> GB(scratch_.data(), nr, N);
-      Eigen::Map<Eigen::MatrixXd> C(scratch_.data() + max_rows_ * N, nr, nr);
+      Eigen::Map<const Eigen::MatrixXd> Ga(local_block(a), nr, D);
+      Eigen::Map<Eigen::MatrixXd> GB(scratch_.data(), nr, D);
+      Eigen::Map<Eigen::MatrixXd> C(scratch_.data() + max_rows_ * D, nr, nr);
       GB.noalias() = Ga * blocks_[std::size_t(a)];
       C.noalias() = GB * Ga.transpose();
       const Index* idx = pair_index_.data() + pair_start_[std::size_t(a)];
@@ -141,10 +141,10 @@ class KktSystem {
     y.noalias() = A0_ * x;
     for (Index a = 0; a < nc_; ++a) {
       const Index nr = row_start_[a + 1] - row_start_[a];
-      Eigen::Map<const Eigen::MatrixXd> Ga(local_block(a), nr, N);
-      Vec<N> gx = Vec<N>::Zero();
+      Eigen::Map<const Eigen::MatrixXd> Ga(local_block(a), nr, D);
+      Vec<D> gx = Vec<D>::Zero();
       for (Index p = 0; p < nr; ++p) gx += Ga.row(p).transpose() * x[rows_[std::size_t(row_start_[a] + p)]];
-      const Vec<N> bgx = blocks_[std::size_t(a)] * gx;
+      const Vec<D> bgx = blocks_[std::size_t(a)] * gx;
       for (Index p = 0; p < nr; ++p) y[rows_[std::size_t(row_start_[a] + p)]] += Ga.row(p).dot(bgx);
     }
   }
@@ -175,8 +175,8 @@ class KktSystem {
 
  private:
   const double* local_block(Index a) const {
-    // blocks of G are stored one after the other: offset = N * sum of earlier row counts
-    return g_local_.data() + N * row_start_[a];
+    // blocks of G are stored one after the other: offset = d * sum of earlier row counts
+    return g_local_.data() + D * row_start_[a];
   }
 
   Index n_ = 0, nc_ = 0, max_rows_ = 0;

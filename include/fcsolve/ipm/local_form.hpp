@@ -10,117 +10,80 @@
 // T -> 0): the static regularisation of KktSystem handles that.
 #pragma once
 
-#include <fcsolve/ipm/form_common.hpp>
-#include <fcsolve/ipm/kkt_system.hpp>
+#include <fcsolve/ipm/form_base.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/symmetry.hpp>
 
 #include <cmath>
-#include <optional>
 
 namespace fcsolve {
 namespace ipm {
 
 template <class ConeType, class Factorization>
-class LocalForm {
-  static_assert(ConeType::dim == 2 || ConeType::dim == 3,
-                "the interior-point forms map a Coulomb cone (d = 2 or 3) onto the Lorentz cone");
+class LocalForm : public FormBase<ConeType, Factorization, LocalProblemView, +1> {
+  using Base = FormBase<ConeType, Factorization, LocalProblemView, +1>;
+  using Base::m_, Base::nc_, Base::p_;
 
  public:
-  using Cone = ConeType;
-  static constexpr int dim = Cone::dim;
-  /// Order of the Lorentz cone L^N the iterates live in (N = d).
-  static constexpr int N = dim;
-  using View = LocalProblemView;
+  using Base::D, Base::error_scale, Base::reaction;
   static constexpr bool is_global = false;
-  using Backend = typename Factorization::Backend;
 
   void compute(const LocalProblemView& p) {
     p_.emplace(p);
     m_ = p.size();
     nc_ = p.num_contacts();
     Vector dinv = Vector::Ones(m_);
-    for (Index a = 0; a < nc_; ++a) dinv[a * N] = 1 / p.mu[a];
+    for (Index a = 0; a < nc_; ++a) dinv[a * D] = 1 / p.mu[a];
     Ws_ = dinv.asDiagonal() * SparseMatrix(p.W) * dinv.asDiagonal();
     Ws_.makeCompressed();
     q0_ = dinv.cwiseProduct(Vector(p.q));
-    symmetric_data_ = relative_asymmetry(p.W) <= kSymmetryRoundoff;
+    this->symmetric_data_ = relative_asymmetry(p.W) <= kSymmetryRoundoff;
     SparseMatrix I(m_, m_);
     I.setIdentity();
-    kkt_.compute(Ws_, I, symmetric_data_);
-    q_norm_ = p.q.norm();
+    this->kkt_.compute(Ws_, I, this->symmetric_data_);
+    this->q_norm_ = p.q.norm();
     const double tr = Ws_.diagonal().cwiseAbs().sum();
-    theta_ = tr > 0 ? std::sqrt(tr / double(m_)) : 1.0;
+    this->theta_ = tr > 0 ? std::sqrt(tr / double(m_)) : 1.0;
     diag_scale_ = tr > 0 ? tr / double(m_) : 1.0;
     r_.resize(m_);
     u_.resize(m_);
     rhs_.resize(m_);
   }
 
-  const LocalProblemView& view() const { return *p_; }
   Index primal_size() const { return 0; }
-  Index size() const { return m_; }
-  Index num_contacts() const { return nc_; }
-  const VectorMap& mu() const { return p_->mu; }
-  bool symmetric_data() const { return symmetric_data_; }
-  double initial_scaling() const { return theta_; }
   /// Typical diagonal of K: the unit of the static regularisation.
   double diagonal_scale() const { return diag_scale_; }
-  double error_scale() const { return q_norm_ > 0 ? q_norm_ : 1.0; }
-  KktSystem<N, Factorization>& kkt() { return kkt_; }
 
   /// r_p = Ws y + q0 + E s - x (no r_d in this form).
   void residuals(const Iterate& it, Vector& r_d, Vector& r_p) const {
     r_d.resize(0);
     r_p.noalias() = Ws_ * it.y;
     r_p += q0_ - it.x;
-    add_normal<N>(r_p, it.s);
+    add_normal<D>(r_p, it.s);
   }
 
-  /// B_a = P_a^-1 T_a^2.
-  bool factorize(const ContactState<N>& cs, bool coupled, double delta) {
-    kkt_.set_symmetric(symmetric_data_ && !coupled);
-    auto& B = kkt_.blocks();
-    for (std::size_t a = 0; a < B.size(); ++a) {
-      const Mat<N>& T = cs.scaling[a].T;
-      B[a].noalias() = T * T;
-      if (coupled) {
-        const Eigen::Matrix<double, 1, N> row = cs.normal[a].transpose() * B[a];
-        B[a].row(0) -= row;
-      }
-    }
-    return kkt_.factorize(delta);
-  }
-
-  bool factorize_uniform(double theta, double delta) {
-    kkt_.set_symmetric(symmetric_data_);
-    for (auto& B : kkt_.blocks()) B = theta * theta * Mat<N>::Identity();
-    return kkt_.factorize(delta);
-  }
-
-  void direction(const ContactState<N>& cs, const Vector& xi, const Vector& /*r_d*/,
+  void direction(const ContactState<D>& cs, const Vector& xi, const Vector& /*r_d*/,
                  const Vector& rp_tilde, Iterate& d, int refinement) {
     for (Index a = 0; a < nc_; ++a) {
-      Vec<N> txi = cs.scaling[std::size_t(a)].T * xi.template segment<N>(a * N);
+      Vec<D> txi = cs.scaling[std::size_t(a)].T * xi.template segment<D>(a * D);
       txi[0] -= cs.normal[std::size_t(a)].dot(txi);
-      rhs_.template segment<N>(a * N) = txi - rp_tilde.template segment<N>(a * N);
+      rhs_.template segment<D>(a * D) = txi - rp_tilde.template segment<D>(a * D);
     }
-    kkt_.solve(rhs_, d.y, refinement);
+    this->kkt_.solve(rhs_, d.y, refinement);
     d.x.noalias() = Ws_ * d.y;
     d.x += rp_tilde;
-    apply_coupling<N>(cs, d.x);
+    apply_coupling<D>(cs, d.x);
   }
 
   void direction_uniform(double theta, const Vector& xi, const Vector& /*r_d*/, const Vector& r_p,
                          Iterate& d) {
     rhs_ = theta * xi - r_p;
-    kkt_.solve(rhs_, d.y, 2);
+    this->kkt_.solve(rhs_, d.y, 2);
     d.x.noalias() = Ws_ * d.y;
     d.x += r_p;
   }
 
-  void reaction(const Iterate& it, Vector& r) const { reaction_from_lorentz<N>(it.y, p_->mu, r); }
   /// u = W r + q for the reaction of `it`.
   void velocity(const Iterate& it, Vector& u) const {
     Vector r(m_);
@@ -134,7 +97,7 @@ class LocalForm {
   double error_of(const Vector& r, Vector& u, const Vector& s, bool frozen) const {
     u.noalias() = p_->W * r;
     u += p_->q;
-    return std::sqrt(natural_map_squared<N>(r, u, p_->mu, s, frozen)) / error_scale();
+    return std::sqrt(natural_map_squared<D>(r, u, p_->mu, s, frozen)) / error_scale();
   }
 
   /// FCLIB error ||F_nat|| / ||q|| (or with s frozen, see GlobalForm::error).
@@ -142,18 +105,14 @@ class LocalForm {
     reaction(it, r_);
     u_.noalias() = p_->W * r_;
     u_ += p_->q;
-    const double comp = natural_map_squared<N>(r_, u_, p_->mu, it.s, frozen);
+    const double comp = natural_map_squared<D>(r_, u_, p_->mu, it.s, frozen);
     return std::sqrt(comp) / error_scale();
   }
 
  private:
-  std::optional<LocalProblemView> p_;
-  Index m_ = 0, nc_ = 0;
   SparseMatrix Ws_;
   Vector q0_;
-  KktSystem<N, Factorization> kkt_;
-  bool symmetric_data_ = true;
-  double q_norm_ = 0, theta_ = 1, diag_scale_ = 1;
+  double diag_scale_ = 1;
   Vector r_, u_, rhs_;
 };
 

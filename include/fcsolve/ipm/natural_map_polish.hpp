@@ -12,12 +12,12 @@
 // Phi is the natural map of core/error.hpp (rho = 1: its norm is the FCLIB
 // error) through formulation/natural_map.hpp, or, with s frozen,
 // r - P_K(r - u - (mu s, 0)).
-// Steps are damped by the Armijo backtracking of newton/line_search.hpp on
-// the squared scaled residual (monotone: the polish only ever returns a
-// point at least as good as the one it was given), and no step starts after
-// `max_seconds` (the caller's time budget). It keeps its own short loop
-// rather than newton/newton_loop.hpp: its merit includes the equilibrium
-// rows, it has no stall restarts, and it stops at the caller's target. B
+// The iteration is the Newton family's loop (newton/newton_loop.hpp,
+// PolishNewton below) with monotone Armijo steps on the squared scaled
+// residual (its merit includes the equilibrium rows), no stall restarts, the
+// caller's target as tolerance, and no step started after `max_seconds`
+// (the caller's time budget); it returns the iterate of least error, never
+// one worse than it was given. B
 // gets a tiny diagonal shift (kJacobianShift): a sticking contact has
 // B_a = 0, and with a rank-deficient H the Jacobian would be singular (the
 // reactions are not unique); the shift picks a small-norm step among them.
@@ -28,7 +28,7 @@
 #include <fcsolve/ipm/form_common.hpp>
 #include <fcsolve/ipm/kkt_factorization.hpp>
 #include <fcsolve/newton/global_jacobian.hpp>
-#include <fcsolve/newton/line_search.hpp>
+#include <fcsolve/newton/newton_loop.hpp>
 #include <fcsolve/newton/reduced_jacobian.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/global_problem.hpp>
@@ -52,21 +52,21 @@ inline constexpr double kJacobianShift = 1e-10;
 
 namespace detail {
 
-template <int N>
-using JacobianBlocks = typename ReducedJacobian<N>::BlockList;
+template <int D>
+using JacobianBlocks = typename ReducedJacobian<D>::BlockList;
 
 /// Phi_a for every contact, and (A_a, B_a + kJacobianShift I) when `A`, `B`
 /// are given; `frozen` null: the Coulomb natural map, else u~ = u + (mu s, 0).
-template <int N>
+template <int D>
 void natural_map_blocks(const Vector& r, const Vector& u, const Eigen::Ref<const Vector>& mu,
-                        const Vector* frozen, Vector& phi, JacobianBlocks<N>* A,
-                        JacobianBlocks<N>* B) {
-  using Cone = CoulombCone<N>;
-  using V = SmallVector<N>;
-  using M = SmallMatrix<N>;
+                        const Vector* frozen, Vector& phi, JacobianBlocks<D>* A,
+                        JacobianBlocks<D>* B) {
+  using Cone = CoulombCone<D>;
+  using V = SmallVector<D>;
+  using M = SmallMatrix<D>;
   const V rho = V::Ones();
   for (Index a = 0; a < mu.size(); ++a) {
-    const V ra = r.template segment<N>(a * N), ua = u.template segment<N>(a * N);
+    const V ra = r.template segment<D>(a * D), ua = u.template segment<D>(a * D);
     V G;
     if (!frozen) {
       if (A) NaturalMapFunction<Cone>::value_and_jacobian(ra, ua, mu[a], rho, G, (*A)[std::size_t(a)],
@@ -77,20 +77,20 @@ void natural_map_blocks(const Vector& r, const Vector& u, const Eigen::Ref<const
       z[0] -= mu[a] * (*frozen)[a];
       G = ra - Cone::project(z, mu[a]);
       if (A) {
-        const M J = coulomb_projection_jacobian<N>(z, mu[a]);
+        const M J = coulomb_projection_jacobian<D>(z, mu[a]);
         (*A)[std::size_t(a)] = J;
         (*B)[std::size_t(a)] = M::Identity() - J;
       }
     }
     if (B) (*B)[std::size_t(a)].diagonal().array() += kJacobianShift;
-    phi.template segment<N>(a * N) = G;
+    phi.template segment<D>(a * D) = G;
   }
 }
 
 /// J dz = b for the successive Jacobians of one polish: dense LU for small
 /// systems, else the backend's sparse LU with the symbolic analysis of the
 /// first Jacobian reused (every Jacobian has the pattern fixed by the
-/// assembly: all N x N blocks are stored, zeros included).
+/// assembly: all d x d blocks are stored, zeros included).
 template <class Backend>
 class JacobianSolver {
  public:
@@ -116,45 +116,81 @@ class JacobianSolver {
   bool analysed_ = false;
 };
 
-/// Armijo backtracking psi(t) <= (1 - 1e-4 t) psi(0), t = 1, 1/2, ... (30 trials).
-inline NewtonSettings polish_line_search() {
-  NewtonSettings s;
-  s.line_search = LineSearch::Armijo;
-  s.sigma = 0.5e-4;
-  s.max_line_search = 30;
-  s.min_step = 0;
-  return s;
-}
-
-/// The damped Newton iteration of both forms. Form provides
+/// The damped Newton iteration of both forms, on the Newton family's loop
+/// (newton/newton_loop.hpp) with the polish's settings: the target as tol,
+/// the caller's iteration and time budgets, the monotone Armijo backtracking
+/// psi(t) <= (1 - 1e-4 t) psi(0), t = 1, 1/2, ... (30 trials), no stall
+/// restarts, no rho changes and no fallback. Form provides
 ///   double evaluate(double& error)          merit (and Jacobian) at the iterate
 ///   double trial(double t, double& error)   merit at z + t dz
 ///   bool direction()                        solves J dz = -F
 ///   void take(double t)                     z <- z + t dz
+///   void save_best(), restore_best()        keep / restore the iterate
 template <class Form>
-PolishResult newton_polish(Form& form, const Stopwatch& clock, double target, int max_iter,
-                           double max_seconds) {
-  PolishResult res;
-  double error = 0, trial_error = 0;
-  double merit = form.evaluate(error);
-  res.initial_error = res.error = error;
-  const NewtonSettings search = polish_line_search();
-  for (int k = 0; k < max_iter && error > target && clock.seconds() < max_seconds; ++k) {
-    if (!form.direction()) break;
-    const LineSearchResult ls =
-        line_search(search, merit, [&](double t) { return form.trial(t, trial_error); }, merit);
-    if (!ls.accepted) break;
-    form.take(ls.step);
-    merit = form.evaluate(error);
-    res.iterations = k + 1;
-    res.error = error;
+class PolishNewton : public NewtonLoop<PolishNewton<Form>> {
+  using Loop = NewtonLoop<PolishNewton>;
+  friend Loop;
+
+ public:
+  PolishNewton(Form& form, double target, int max_iter, double max_seconds)
+      : Loop(polish_settings(target, max_iter, max_seconds)), form_(form) {}
+
+  PolishResult run(const Stopwatch& clock) {
+    Loop::run(clock);
+    PolishResult res;
+    res.initial_error = initial_error_;
+    res.iterations = this->counters().steps;
+    res.error = this->info().error;
+    return res;
   }
-  return res;
-}
+
+ private:
+  static NewtonSettings polish_settings(double target, int max_iter, double max_seconds) {
+    NewtonSettings s;
+    s.tol = target;
+    s.max_iter = max_iter;
+    s.max_time = max_seconds;
+    s.line_search = LineSearch::Armijo;
+    s.sigma = 0.5e-4;
+    s.max_line_search = 30;
+    s.min_step = 0;
+    s.line_search_memory = 1;  // monotone
+    s.nonmonotone = false;
+    s.stall_window = 0;
+    s.rho_strategy = RhoStrategy::Constant;
+    s.hybrid = false;
+    return s;
+  }
+
+  // ---- hooks of NewtonLoop
+  double error() const { return error_; }
+  void refresh() {
+    merit_ = form_.evaluate(error_);
+    if (!evaluated_) initial_error_ = error_;  // Loop::run refreshes first at the start
+    evaluated_ = true;
+  }
+  void set_rho_factor(double) {}
+  void save_best() { form_.save_best(); }
+  void restore_best() { form_.restore_best(); }
+  bool fallback_sweep() { return false; }
+  bool newton_step() {
+    if (!form_.direction()) return false;
+    double trial_error = 0;
+    const double t = this->step_length(merit_, [&](double s) { return form_.trial(s, trial_error); });
+    if (t <= 0) return false;
+    form_.take(t);
+    refresh();
+    return true;
+  }
+
+  Form& form_;
+  double merit_ = 0, error_ = 0, initial_error_ = 0;
+  bool evaluated_ = false;
+};
 
 /// FC/I in (v, r): merit (e1^2 + e2^2), error max(e1, e2) with e1 the
 /// scaled equilibrium residual and e2 = ||Phi|| / ||q||, as core/error.hpp.
-template <int N, class Backend>
+template <int D, class Backend>
 class GlobalPolish {
  public:
   GlobalPolish(const GlobalProblemView& p, double q_norm, Vector& v, Vector& r, const Vector* frozen)
@@ -163,8 +199,8 @@ class GlobalPolish {
     f_norm_ = p.f.norm();
     A_.resize(std::size_t(p.num_contacts()));
     B_.resize(std::size_t(p.num_contacts()));
-    for (Vector* x : {&phi_, &u_, &Hr_, &r_try_}) x->resize(m_);
-    for (Vector* x : {&Mv_, &v_try_}) x->resize(n_);
+    for (Vector* x : {&phi_, &u_, &Hr_, &r_try_, &best_r_}) x->resize(m_);
+    for (Vector* x : {&Mv_, &v_try_, &best_v_}) x->resize(n_);
     F_.resize(n_ + m_);
     dz_.resize(n_ + m_);
   }
@@ -188,12 +224,20 @@ class GlobalPolish {
     v_ += t * dz_.head(n_);
     r_ += t * dz_.tail(m_);
   }
+  void save_best() {
+    best_v_ = v_;
+    best_r_ = r_;
+  }
+  void restore_best() {
+    v_ = best_v_;
+    r_ = best_r_;
+  }
 
  private:
   double residual(const Vector& v, const Vector& r, bool jacobian, double& error) {
     u_.noalias() = p_.H.transpose() * v;
     u_ += p_.w;
-    natural_map_blocks<N>(r, u_, p_.mu, frozen_, phi_, jacobian ? &A_ : nullptr, jacobian ? &B_ : nullptr);
+    natural_map_blocks<D>(r, u_, p_.mu, frozen_, phi_, jacobian ? &A_ : nullptr, jacobian ? &B_ : nullptr);
     Mv_.noalias() = p_.M * v;
     Hr_.noalias() = p_.H * r;
     F_.head(n_) = Mv_ - Hr_ - p_.f;
@@ -210,22 +254,22 @@ class GlobalPolish {
   const Vector* frozen_;
   Index n_, m_;
   double q_scale_ = 1, f_norm_ = 0;
-  GlobalJacobian<N> jacobian_;
+  GlobalJacobian<D> jacobian_;
   SparseMatrix J_;
   JacobianSolver<Backend> linear_;
-  JacobianBlocks<N> A_, B_;
-  Vector phi_, u_, Mv_, Hr_, F_, rhs_, dz_, v_try_, r_try_;
+  JacobianBlocks<D> A_, B_;
+  Vector phi_, u_, Mv_, Hr_, F_, rhs_, dz_, v_try_, r_try_, best_v_, best_r_;
 };
 
 /// FC/II in r: merit error^2, error ||Phi|| / ||q||.
-template <int N, class Backend>
+template <int D, class Backend>
 class LocalPolish {
  public:
   LocalPolish(const LocalProblemView& p, Vector& r, const Vector* frozen)
       : p_(p), r_(r), frozen_(frozen), q_scale_(p.q.norm() > 0 ? p.q.norm() : 1.0) {
     A_.resize(std::size_t(p.num_contacts()));
     B_.resize(std::size_t(p.num_contacts()));
-    for (Vector* x : {&phi_, &u_, &dr_, &r_try_}) x->resize(p.size());
+    for (Vector* x : {&phi_, &u_, &dr_, &r_try_, &best_r_}) x->resize(p.size());
   }
 
   double evaluate(double& error) { return residual(r_, true, error); }
@@ -243,12 +287,14 @@ class LocalPolish {
     return linear_.solve(J_, rhs_, dr_);
   }
   void take(double t) { r_ += t * dr_; }
+  void save_best() { best_r_ = r_; }
+  void restore_best() { r_ = best_r_; }
 
  private:
   double residual(const Vector& r, bool jacobian, double& error) {
     u_.noalias() = p_.W * r;
     u_ += p_.q;
-    natural_map_blocks<N>(r, u_, p_.mu, frozen_, phi_, jacobian ? &A_ : nullptr, jacobian ? &B_ : nullptr);
+    natural_map_blocks<D>(r, u_, p_.mu, frozen_, phi_, jacobian ? &A_ : nullptr, jacobian ? &B_ : nullptr);
     error = phi_.norm() / q_scale_;
     return error * error;
   }
@@ -257,31 +303,31 @@ class LocalPolish {
   Vector& r_;
   const Vector* frozen_;
   double q_scale_;
-  ReducedJacobian<N> jacobian_;
+  ReducedJacobian<D> jacobian_;
   SparseMatrix J_;
   JacobianSolver<Backend> linear_;
-  JacobianBlocks<N> A_, B_;
-  Vector phi_, u_, rhs_, dr_, r_try_;
+  JacobianBlocks<D> A_, B_;
+  Vector phi_, u_, rhs_, dr_, r_try_, best_r_;
 };
 
 }  // namespace detail
 
 /// Polishes (v, r) of FC/I; `q_norm` = ||H^T M^-1 f + w|| (error scale).
-template <int N, class Backend>
+template <int D, class Backend>
 PolishResult polish_global(const GlobalProblemView& p, double q_norm, Vector& v, Vector& r,
                            const Vector* frozen, double target, int max_iter, double max_seconds) {
   Stopwatch clock;
-  detail::GlobalPolish<N, Backend> form(p, q_norm, v, r, frozen);
-  return detail::newton_polish(form, clock, target, max_iter, max_seconds);
+  detail::GlobalPolish<D, Backend> form(p, q_norm, v, r, frozen);
+  return detail::PolishNewton<detail::GlobalPolish<D, Backend>>(form, target, max_iter, max_seconds).run(clock);
 }
 
 /// Polishes r of FC/II.
-template <int N, class Backend>
+template <int D, class Backend>
 PolishResult polish_local(const LocalProblemView& p, Vector& r, const Vector* frozen, double target,
                           int max_iter, double max_seconds) {
   Stopwatch clock;
-  detail::LocalPolish<N, Backend> form(p, r, frozen);
-  return detail::newton_polish(form, clock, target, max_iter, max_seconds);
+  detail::LocalPolish<D, Backend> form(p, r, frozen);
+  return detail::PolishNewton<detail::LocalPolish<D, Backend>>(form, target, max_iter, max_seconds).run(clock);
 }
 
 }  // namespace ipm

@@ -51,7 +51,7 @@ enum class RecoveryResult { NotApplicable, Ran, Stopped };
 
 template <class Form>
 class NonsmoothIpm : public IpmSolverBase<Form> {
-  static constexpr int N = Form::dim;
+  static constexpr int D = Form::dim;
 
  public:
   using Settings = NipmSettings;
@@ -206,7 +206,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
   Vector tangential_speeds_of_best() const {
     const Vector u = this->velocity_of(this->best_.w);
     Vector s(this->form_->num_contacts());
-    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<N - 1>(a * N + 1).norm();
+    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<D - 1>(a * D + 1).norm();
     return s;
   }
 

@@ -1,7 +1,7 @@
 // Per-contact operations of the interior-point methods, in the Jordan algebra
-// of the Lorentz cone L^N (cone/jordan_algebra.hpp):
+// of the Lorentz cone L^d (cone/jordan_algebra.hpp):
 //
-//  * the Coulomb cone K_mu and its dual mapped onto L^N (Acary, Cadoux,
+//  * the Coulomb cone K_mu and its dual mapped onto L^d (Acary, Cadoux,
 //    Lemarechal & Malick 2011, sec. 3):  y = D r,  x = D^-1 u~,
 //    D = diag(mu, 1, ..., 1), so r in K_mu <=> y in L, u~ in K_mu* <=> x in L
 //    and r^T u~ = y^T x. The De Saxce shift A s = (mu s, 0, 0) becomes s e.
@@ -27,53 +27,53 @@
 namespace fcsolve {
 namespace ipm {
 
-template <int N>
-using Vec = jordan::Vec<N>;
-template <int N>
-using Mat = jordan::Mat<N>;
+template <int D>
+using Vec = jordan::Vec<D>;
+template <int D>
+using Mat = jordan::Mat<D>;
 
 /// det z = z0^2 - ||z1||^2, factored to limit cancellation near the boundary.
-template <int N>
-double lorentz_det(const Vec<N>& z) {
-  const double nb = z.template tail<N - 1>().norm();
+template <int D>
+double lorentz_det(const Vec<D>& z) {
+  const double nb = z.template tail<D - 1>().norm();
   return (z[0] - nb) * (z[0] + nb);
 }
 
 /// Smallest spectral value z0 - ||z1|| (>= 0 iff z in L).
-template <int N>
-double lorentz_min_eigenvalue(const Vec<N>& z) {
-  return z[0] - z.template tail<N - 1>().norm();
+template <int D>
+double lorentz_min_eigenvalue(const Vec<D>& z) {
+  return z[0] - z.template tail<D - 1>().norm();
 }
 
 /// The NT scaling of one contact: T, T^-1 and the scaled point lambda.
-template <int N>
+template <int D>
 struct NtScaling {
-  Mat<N> T, Tinv;
-  Vec<N> lambda;
+  Mat<D> T, Tinv;
+  Vec<D> lambda;
 
   /// Computes the scaling of (x, y); false if either is not in int L.
-  bool compute(const Vec<N>& x, const Vec<N>& y) {
-    const double dx = lorentz_det<N>(x), dy = lorentz_det<N>(y);
+  bool compute(const Vec<D>& x, const Vec<D>& y) {
+    const double dx = lorentz_det<D>(x), dy = lorentz_det<D>(y);
     if (!(dx > 0 && dy > 0 && x[0] > 0 && y[0] > 0)) return false;
     const double sx = std::sqrt(dx), sy = std::sqrt(dy);
-    const Vec<N> xn = x / sx, yn = y / sy;
+    const Vec<D> xn = x / sx, yn = y / sy;
     const double gamma = std::sqrt(0.5 * (1 + xn.dot(yn)));
-    Vec<N> w = xn;
+    Vec<D> w = xn;
     w[0] += yn[0];
-    w.template tail<N - 1>() -= yn.template tail<N - 1>();
+    w.template tail<D - 1>() -= yn.template tail<D - 1>();
     w /= 2 * gamma;
-    Mat<N> Tn;
+    Mat<D> Tn;
     Tn(0, 0) = w[0];
-    Tn.template block<1, N - 1>(0, 1) = w.template tail<N - 1>().transpose();
-    Tn.template block<N - 1, 1>(1, 0) = w.template tail<N - 1>();
-    Tn.template block<N - 1, N - 1>(1, 1) =
-        Mat<N - 1>::Identity() +
-        w.template tail<N - 1>() * w.template tail<N - 1>().transpose() / (1 + w[0]);
+    Tn.template block<1, D - 1>(0, 1) = w.template tail<D - 1>().transpose();
+    Tn.template block<D - 1, 1>(1, 0) = w.template tail<D - 1>();
+    Tn.template block<D - 1, D - 1>(1, 1) =
+        Mat<D - 1>::Identity() +
+        w.template tail<D - 1>() * w.template tail<D - 1>().transpose() / (1 + w[0]);
     const double beta = std::sqrt(sx / sy);
     T = beta * Tn;
     Tinv = Tn / beta;  // J Tn J: flip the signs of the off-diagonal row/column
-    Tinv.template block<1, N - 1>(0, 1) *= -1;
-    Tinv.template block<N - 1, 1>(1, 0) *= -1;
+    Tinv.template block<1, D - 1>(0, 1) *= -1;
+    Tinv.template block<D - 1, 1>(1, 0) *= -1;
     lambda = std::sqrt(sx * sy) * (Tn * yn);
     lambda[0] = std::sqrt(sx * sy) * gamma;  // exact first entry (CVXOPT sec. 4.3)
     return true;
@@ -81,23 +81,23 @@ struct NtScaling {
 };
 
 /// z with lambda o z = r, lambda in int L (arrow(lambda)^-1 r in closed form).
-template <int N>
-Vec<N> jordan_quotient(const Vec<N>& lambda, const Vec<N>& r) {
-  const auto l1 = lambda.template tail<N - 1>();
-  Vec<N> z;
-  z[0] = (lambda[0] * r[0] - l1.dot(r.template tail<N - 1>())) / lorentz_det<N>(lambda);
-  z.template tail<N - 1>() = (r.template tail<N - 1>() - z[0] * l1) / lambda[0];
+template <int D>
+Vec<D> jordan_quotient(const Vec<D>& lambda, const Vec<D>& r) {
+  const auto l1 = lambda.template tail<D - 1>();
+  Vec<D> z;
+  z[0] = (lambda[0] * r[0] - l1.dot(r.template tail<D - 1>())) / lorentz_det<D>(lambda);
+  z.template tail<D - 1>() = (r.template tail<D - 1>() - z[0] * l1) / lambda[0];
   return z;
 }
 
 /// sup { alpha >= 0 : z + alpha d in L } for z in int L (+inf if unbounded).
 /// rho = P(z^-1/2) d maps the question to e + alpha rho in L, whose smallest
 /// spectral value is 1 + alpha (rho0 - ||rho1||) (Alizadeh & Goldfarb 2003).
-template <int N>
-double max_step_in_cone(const Vec<N>& z, const Vec<N>& d) {
-  const Vec<N> root_inverse = jordan::sqrt<N>(jordan::inverse<N>(z));
-  const Vec<N> rho = jordan::quadratic_representation<N>(root_inverse) * d;
-  const double slope = rho.template tail<N - 1>().norm() - rho[0];
+template <int D>
+double max_step_in_cone(const Vec<D>& z, const Vec<D>& d) {
+  const Vec<D> root_inverse = jordan::sqrt<D>(jordan::inverse<D>(z));
+  const Vec<D> rho = jordan::quadratic_representation<D>(root_inverse) * d;
+  const double slope = rho.template tail<D - 1>().norm() - rho[0];
   return slope > 0 ? 1 / slope : std::numeric_limits<double>::infinity();
 }
 

@@ -13,14 +13,11 @@
 // supported here: use the reduced form (Newton) for them.
 #pragma once
 
-#include <fcsolve/cone/cones.hpp>
 #include <fcsolve/core/solver_contract.hpp>
-#include <fcsolve/formulation/one_contact_function.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
-#include <fcsolve/newton/contact_residual.hpp>
+#include <fcsolve/newton/contact_newton.hpp>
 #include <fcsolve/newton/global_jacobian.hpp>
 #include <fcsolve/newton/linear_solvers.hpp>
-#include <fcsolve/newton/newton_loop.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/problem/validate.hpp>
@@ -34,22 +31,20 @@ namespace fcsolve {
 
 template <template <class> class Formulation, class Cone,
           class LinearSolver = SparseNewtonLinearSolver<DefaultBackend>, class Backend = DefaultBackend>
-class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSolver, Backend>> {
-  using Loop = NewtonLoop<GlobalNewton>;
-  friend Loop;
+class GlobalNewton
+    : public ContactNewton<GlobalNewton<Formulation, Cone, LinearSolver, Backend>, Formulation, Cone> {
+  using Base = ContactNewton<GlobalNewton, Formulation, Cone>;
+  friend NewtonLoop<GlobalNewton>;
+  friend Base;  // calls update_velocity()
+  using Base::r_, Base::u_, Base::best_r_, Base::residual_, Base::psi_, Base::scale_, Base::reference_norm_;
+  using Base::counters_, Base::info_, Base::settings_;
 
  public:
-  static constexpr int d = Cone::dim;
-  using Function = Formulation<Cone>;
-  using Settings = NewtonSettings;
-  static_assert(is_cone_v<Cone>, "Cone must be a cone policy (cone/cones.hpp)");
-  static_assert(is_one_contact_function_v<Function>, "Formulation<Cone> must be a one-contact function");
+  using Base::d;
   static_assert(std::is_same_v<typename LinearSolver::Matrix, SparseMatrix>,
                 "the global Newton system is sparse: use a sparse linear solver");
 
-  explicit GlobalNewton(const Settings& s = {}) : Loop(s) {}
-  GlobalNewton(const GlobalNewton&) = delete;  // system_ points into jacobian_
-  GlobalNewton& operator=(const GlobalNewton&) = delete;
+  explicit GlobalNewton(const NewtonSettings& s = {}) : Base(s) {}
 
   /// Validates, factorises M, fixes the pattern of the Newton matrix. The
   /// viewed data must outlive the solver. Throws InvalidProblem for bad data
@@ -109,10 +104,6 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
   double equilibrium() const { return equilibrium_; }
 
  private:
-  using Loop::counters_;
-  using Loop::info_;
-  using Loop::settings_;
-
   static Vector lumped_inverse_mass(const SparseMap& M) {
     Vector dinv = SparseMatrix(M).diagonal().cwiseAbs();
     const double fallback = dinv.maxCoeff() > 0 ? dinv.maxCoeff() : 1.0;
@@ -120,7 +111,7 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
     return dinv;
   }
 
-  // ---- hooks of NewtonLoop
+  // ---- hooks of NewtonLoop (refresh, set_rho_factor: ContactNewton)
   /// max(complementarity, equilibrium), as core/error.hpp's global error.
   double error() {
     const GlobalProblemView& p = *problem_;
@@ -130,8 +121,6 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
     equilibrium_ = F_.head(p.num_dofs()).norm() / (denom > 0 ? denom : 1.0);
     return std::max(complementarity_, equilibrium_);
   }
-  void refresh() { psi_ = residual_.evaluate(r_, u_, true); }
-  void set_rho_factor(double kappa) { residual_.set_rho_factor(kappa); }
   void save_best() {
     best_r_ = r_;
     best_v_ = v_;
@@ -153,20 +142,18 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
     F_.tail(F_.size() - n) = residual_.G();
     FCSOLVE_NO_MALLOC_END();
     if (!system_.solve(F_, dz_, this->shift(psi_, reference_norm_),
-                       settings_.singular_regularisation, counters_))
+                       settings_.singular_regularization, counters_))
       return false;
     FCSOLVE_NO_MALLOC_BEGIN();
     Hdv_.noalias() = problem_->H.transpose() * dz_.head(n);
     const auto dr = dz_.tail(dz_.size() - n);
-    const double t = this->step_length(psi_, [&](double s) { return residual_.trial(r_, dr, u_, Hdv_, s); });
-    if (t > 0) {
-      v_ += t * dz_.head(n);
-      r_ += t * dr;
-      update_velocity();
-      refresh();
-    }
+    const bool stepped = this->take_step([&](double s) { return residual_.trial(r_, dr, u_, Hdv_, s); },
+                                         [&](double t) {
+                                           v_ += t * dz_.head(n);
+                                           r_ += t * dr;
+                                         });
     FCSOLVE_NO_MALLOC_END();
-    return t > 0;
+    return stepped;
   }
 
   void update_velocity() {
@@ -185,9 +172,8 @@ class GlobalNewton : public NewtonLoop<GlobalNewton<Formulation, Cone, LinearSol
   GlobalReduction<Backend> reduction_;
   GlobalJacobian<d> jacobian_;
   RegularisedNewtonSystem<LinearSolver, GlobalJacobian<d>> system_;  // points to jacobian_
-  ContactResidual<Function, d> residual_;
-  Vector r_, u_, v_, best_r_, best_v_, Hdv_, Mv_, Hr_, F_, dz_;
-  double psi_ = 0, scale_ = 1, q_norm_ = 0, f_norm_ = 0, reference_norm_ = 1;
+  Vector v_, best_v_, Hdv_, Mv_, Hr_, F_, dz_;
+  double q_norm_ = 0, f_norm_ = 0;
   double complementarity_ = 0, equilibrium_ = 0;
 };
 

@@ -56,8 +56,8 @@ struct NewtonSettings : SolverSettings {
   /// at the solution (0: plain Newton).
   double levenberg_marquardt = 0.1;
   /// A system that is still singular is retried with delta =
-  /// singular_regularisation * max(1, max|J_ii|), grown 100x per failure.
-  double singular_regularisation = 1e-10;
+  /// singular_regularization * max(1, max|J_ii|), grown 100x per failure.
+  double singular_regularization = 1e-10;
   /// Stall: the best error does not drop by `stall_ratio` within
   /// `stall_window` iterations (or no Newton step can be computed). Then the
   /// solve restarts from the best iterate: with a rescaled rho (Adaptive),

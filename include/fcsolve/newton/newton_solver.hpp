@@ -13,13 +13,10 @@
 // Convergence is judged by the FCLIB error of core/error.hpp, never by ||G||.
 #pragma once
 
-#include <fcsolve/cone/cones.hpp>
 #include <fcsolve/core/solver_contract.hpp>
-#include <fcsolve/formulation/one_contact_function.hpp>
 #include <fcsolve/local/alart_curnier_backtracking.hpp>
-#include <fcsolve/newton/contact_residual.hpp>
+#include <fcsolve/newton/contact_newton.hpp>
 #include <fcsolve/newton/linear_solvers.hpp>
-#include <fcsolve/newton/newton_loop.hpp>
 #include <fcsolve/newton/reduced_jacobian.hpp>
 #include <fcsolve/nsgs/nsgs_solver.hpp>
 #include <fcsolve/problem/error.hpp>
@@ -33,21 +30,19 @@ namespace fcsolve {
 
 template <template <class> class Formulation, class Cone, class Storage = SparseStorage<Cone::dim>,
           class LinearSolver = DefaultNewtonLinearSolver<Storage>>
-class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver>> {
-  using Loop = NewtonLoop<Newton>;
-  friend Loop;
+class Newton
+    : public ContactNewton<Newton<Formulation, Cone, Storage, LinearSolver>, Formulation, Cone> {
+  using Base = ContactNewton<Newton, Formulation, Cone>;
+  friend NewtonLoop<Newton>;
+  friend Base;  // calls update_velocity()
+  using Base::r_, Base::u_, Base::best_r_, Base::residual_, Base::psi_, Base::scale_, Base::reference_norm_;
+  using Base::counters_, Base::info_, Base::settings_;
 
  public:
-  static constexpr int d = Cone::dim;
-  using Function = Formulation<Cone>;
-  using Settings = NewtonSettings;
-  static_assert(is_cone_v<Cone>, "Cone must be a cone policy (cone/cones.hpp)");
+  using Base::d;
   static_assert(is_storage_v<Storage> && Storage::block_dim == d, "Storage must store d x d blocks");
-  static_assert(is_one_contact_function_v<Function>, "Formulation<Cone> must be a one-contact function");
 
-  explicit Newton(const Settings& s = {}) : Loop(s) {}
-  Newton(const Newton&) = delete;  // system_ points into jacobian_
-  Newton& operator=(const Newton&) = delete;
+  explicit Newton(const NewtonSettings& s = {}) : Base(s) {}
 
   /// Validates the problem, stores W, fixes the pattern of J. The viewed
   /// data must outlive the solver.
@@ -89,16 +84,10 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
   }
 
  private:
-  using Loop::counters_;
-  using Loop::info_;
-  using Loop::settings_;
-
-  // ---- hooks of NewtonLoop
+  // ---- hooks of NewtonLoop (refresh, set_rho_factor: ContactNewton)
   double error() const {
     return std::sqrt(natural_map_norms<Cone>(r_, u_, problem_->mu).squared_sum) / scale_;
   }
-  void refresh() { psi_ = residual_.evaluate(r_, u_, true); }
-  void set_rho_factor(double kappa) { residual_.set_rho_factor(kappa); }
   void save_best() { best_r_ = r_; }
   void restore_best() {
     r_ = best_r_;
@@ -116,18 +105,14 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
     jacobian_.assemble(residual_.A(), residual_.B(), system_.matrix());
     FCSOLVE_NO_MALLOC_END();
     if (!system_.solve(residual_.G(), dr_, this->shift(psi_, reference_norm_),
-                       settings_.singular_regularisation, counters_))
+                       settings_.singular_regularization, counters_))
       return false;
     FCSOLVE_NO_MALLOC_BEGIN();
     W().multiply(dr_, Wd_);
-    const double t = this->step_length(psi_, [&](double s) { return residual_.trial(r_, dr_, u_, Wd_, s); });
-    if (t > 0) {
-      r_ += t * dr_;
-      update_velocity();
-      refresh();
-    }
+    const bool stepped = this->take_step([&](double s) { return residual_.trial(r_, dr_, u_, Wd_, s); },
+                                         [&](double t) { r_ += t * dr_; });
     FCSOLVE_NO_MALLOC_END();
-    return t > 0;
+    return stepped;
   }
 
   void update_velocity() {
@@ -149,9 +134,7 @@ class Newton : public NewtonLoop<Newton<Formulation, Cone, Storage, LinearSolver
   Sweeps sweeps_{sweep_settings()};
   ReducedJacobian<d> jacobian_;
   RegularisedNewtonSystem<LinearSolver, ReducedJacobian<d>> system_;  // points to jacobian_
-  ContactResidual<Function, d> residual_;
-  Vector r_, u_, dr_, Wd_, best_r_;
-  double psi_ = 0, scale_ = 1, reference_norm_ = 1;
+  Vector dr_, Wd_;
 };
 
 }  // namespace fcsolve

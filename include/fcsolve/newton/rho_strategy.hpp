@@ -14,13 +14,13 @@
 namespace fcsolve {
 
 /// ||M||_2 = sqrt(lambda_max(M^T M)) of a small block.
-template <int N>
-double spectral_norm(const SmallMatrix<N>& M) {
-  if constexpr (N == 1) {
+template <int D>
+double spectral_norm(const SmallMatrix<D>& M) {
+  if constexpr (D == 1) {
     return std::abs(M(0, 0));
   } else {
-    const SmallMatrix<N> MtM = M.transpose() * M;
-    Eigen::SelfAdjointEigenSolver<SmallMatrix<N>> eig(MtM, Eigen::EigenvaluesOnly);
+    const SmallMatrix<D> MtM = M.transpose() * M;
+    Eigen::SelfAdjointEigenSolver<SmallMatrix<D>> eig(MtM, Eigen::EigenvaluesOnly);
     return std::sqrt(std::max(eig.eigenvalues().maxCoeff(), 0.0));
   }
 }
