@@ -1,0 +1,82 @@
+// The Tresca fixed point on FC/II(W, q, mu) (Acary, Bremond & Huber 2018,
+// sec. on fixed points over the friction threshold [TFP]; Siconos' TFP;
+// Haslinger 1983 for the underlying successive approximations):
+//
+//   s_k = mu r_N(k)                  (the threshold, per contact)
+//   r_{k+1} solves Tresca(W, q, s_k):  -u in N_C(s_k)(r), u = W r + q,
+//                                      C(s) = { r_N >= 0, ||r_T|| <= s }
+//
+// A fixed point (s = mu r_N) is a Coulomb solution. Each Tresca problem is
+// solved by NSGS (nsgs/) on the cylinder policy (cone/tresca.hpp) with one
+// projection per contact (local::Projection), warm-started from r_k, to the
+// adaptive tolerance max(err_k / 10, tol) (fixed_point/splitting_solver.hpp).
+// W's storage is built once; each outer iteration only re-reads the
+// thresholds (Nsgs::refresh_q_and_mu), so nothing is allocated after
+// compute(). Frictionless contact has no threshold: one Tresca problem is
+// the LCP itself.
+//
+// Success is declared only on the FCLIB error of the Coulomb problem
+// (problem/error.hpp); a failed solve returns the best outer iterate.
+#pragma once
+
+#include <fcsolve/fixed_point/splitting_solver.hpp>
+
+#include <algorithm>
+
+namespace fcsolve {
+
+template <class Cone, class Storage>
+class TrescaFixedPoint : public SplittingSolver<Cone> {
+  using Base = SplittingSolver<Cone>;
+
+ public:
+  using typename Base::Settings;
+  using Set = tresca_set_t<Cone>;
+  using Inner = Nsgs<Set, Storage, local::Projection<Set>>;
+
+  explicit TrescaFixedPoint(const Settings& s = {}) : Base(s) {}
+
+  /// Validates p and builds the inner NSGS on Tresca(W, q, s). The viewed
+  /// data must outlive *this.
+  TrescaFixedPoint& compute(const LocalProblemView& p) {
+    Stopwatch clock;
+    this->prepare(p);
+    const Index nc = p.num_contacts();
+    threshold_ = Vector::Zero(nc);
+    inner_.settings().ordering = ContactOrdering::Natural;
+    inner_.compute(LocalProblemView(p.d, p.W, p.q, VectorMap(threshold_.data(), nc)));
+    u_.resize(p.size());
+    this->info_.setup_seconds = clock.seconds();
+    return *this;
+  }
+
+  /// r: warm start in, solution out (the best outer iterate if the solve
+  /// fails); u = W r + q on return.
+  const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
+    return this->iterate("TrescaFixedPoint", "Tresca problems", r, u,
+                         [&](Eigen::Ref<Vector> x, double tol, double remaining) {
+                           FCSOLVE_NO_MALLOC_BEGIN();
+                           update_threshold(x);
+                           FCSOLVE_NO_MALLOC_END();
+                           auto& is = inner_.settings();
+                           is.tol = tol;  // the Tresca problem has the outer q: the same scale
+                           is.max_iter = this->settings_.inner_max_iter;
+                           is.max_time = std::max(remaining, 1e-9);
+                           inner_.refresh_q_and_mu();
+                           return inner_.solve(x, u_).iterations;
+                         });
+  }
+
+ private:
+  /// s = mu r_N, contact by contact (frictionless: unused).
+  void update_threshold(const Eigen::Ref<const Vector>& r) {
+    constexpr int d = Cone::dim;
+    for (Index a = 0; a < threshold_.size(); ++a)
+      threshold_[a] = this->problem_->mu[a] * std::max(r[a * d], 0.0);
+  }
+
+  Vector threshold_, u_;
+  Inner inner_;
+};
+
+}  // namespace fcsolve
