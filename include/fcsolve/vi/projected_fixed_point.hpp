@@ -13,7 +13,7 @@
 // ||r - P_K(r - F(r))|| / ||q|| comes for free every iteration.
 //
 // The fixed point with StepRule::Fixed is De Saxce's fixed point (De Saxce
-// & Feng 1991; Acary, Bremond & Huber 2018, sec. 4.1 [FP-DS], Siconos'
+// & Feng 1998; Acary, Bremond & Huber 2018, sec. 4.1 [FP-DS], Siconos'
 // DSFP): r <- P_K(r - rho (u + g(u))), u = W r + q, with a constant rho.
 // StepRule::SelfAdaptive is the rule above ([FP-VI-UPK]).
 #pragma once
