@@ -69,7 +69,7 @@ class Panagiotopoulos : public SplittingSolver<Cone> {
   /// fails); u = W r + q on return.
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
     return this->iterate("Panagiotopoulos", "normal-tangential alternations", r, u,
-                         [&](Eigen::Ref<Vector> x, double tol, double remaining) {
+                         [&](Eigen::Ref<Vector> x, double tol, double remaining, double) {
                            Stopwatch clock;
                            FCSOLVE_NO_MALLOC_BEGIN();
                            gather(x);

@@ -86,8 +86,9 @@ class SplittingSolver {
     info_ = SolverInfo();
   }
 
-  /// solve() by outer steps `sweeps = step(r, inner_tol)` (r in/out, the
-  /// inner tolerance on the outer scale ||q||) until the FCLIB error of r
+  /// solve() by outer steps `sweeps = step(r, inner_tol, seconds_left,
+  /// error)` (r in/out, the inner tolerance on the outer scale ||q||, the
+  /// FCLIB error of r) until the FCLIB error of r
   /// is <= tol or a budget (max_iter, max_time), a non-finite error, a
   /// stall of the inner tolerance or the callback stops it. On failure r is
   /// the best outer iterate. `what`: the outer step, for the message.
@@ -115,7 +116,7 @@ class SplittingSolver {
         if (info_.iterations >= s.max_iter) return Status::MaxIterations;
         if (!(clock.seconds() < s.max_time)) return Status::TimeLimit;
         ++info_.iterations;
-        const int done = step(r, inner_tol.next(s, error, idle), s.max_time - clock.seconds());
+        const int done = step(r, inner_tol.next(s, error, idle), s.max_time - clock.seconds(), error);
         idle = done == 0;
         sweeps += done;
         FCSOLVE_NO_MALLOC_BEGIN();

@@ -6,7 +6,12 @@
 //   r_{k+1} solves Tresca(W, q, s_k):  -u in N_C(s_k)(r), u = W r + q,
 //                                      C(s) = { r_N >= 0, ||r_T|| <= s }
 //
-// A fixed point (s = mu r_N) is a Coulomb solution. Each Tresca problem is
+// A fixed point (s = mu r_N) is a Coulomb solution. The map r_N -> r_N is
+// no contraction in general (large mu, strong N-T coupling): measured on
+// Capsules-i100-889 it falls into a 2-cycle. So the threshold is relaxed,
+// s_{k+1} = s_k + theta (mu r_N(k+1) - s_k) (Krasnoselskii-Mann averaging,
+// as local/projection_iterative.hpp does), theta = 1 while the FCLIB error
+// falls and halved (down to 1/64) each time it grows. Each Tresca problem is
 // solved by NSGS (nsgs/) on the cylinder policy (cone/tresca.hpp) with one
 // projection per contact (local::Projection), warm-started from r_k, to the
 // adaptive tolerance max(err_k / 10, tol) (fixed_point/splitting_solver.hpp).
@@ -53,10 +58,18 @@ class TrescaFixedPoint : public SplittingSolver<Cone> {
   /// r: warm start in, solution out (the best outer iterate if the solve
   /// fails); u = W r + q on return.
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
+    bool first = true;
     return this->iterate("TrescaFixedPoint", "Tresca problems", r, u,
-                         [&](Eigen::Ref<Vector> x, double tol, double remaining) {
+                         [&](Eigen::Ref<Vector> x, double tol, double remaining, double error) {
                            FCSOLVE_NO_MALLOC_BEGIN();
-                           update_threshold(x);
+                           if (first) {
+                             relax_ = 1;
+                           } else if (error > last_error_) {
+                             relax_ = std::max(relax_ / 2, 1.0 / 64);
+                           }
+                           update_threshold(x, first ? 1.0 : relax_);
+                           first = false;
+                           last_error_ = error;
                            FCSOLVE_NO_MALLOC_END();
                            auto& is = inner_.settings();
                            is.tol = tol;  // the Tresca problem has the outer q: the same scale
@@ -68,14 +81,15 @@ class TrescaFixedPoint : public SplittingSolver<Cone> {
   }
 
  private:
-  /// s = mu r_N, contact by contact (frictionless: unused).
-  void update_threshold(const Eigen::Ref<const Vector>& r) {
+  /// s <- s + theta (mu r_N - s), contact by contact (frictionless: unused).
+  void update_threshold(const Eigen::Ref<const Vector>& r, double theta) {
     constexpr int d = Cone::dim;
     for (Index a = 0; a < threshold_.size(); ++a)
-      threshold_[a] = this->problem_->mu[a] * std::max(r[a * d], 0.0);
+      threshold_[a] += theta * (this->problem_->mu[a] * std::max(r[a * d], 0.0) - threshold_[a]);
   }
 
   Vector threshold_, u_;
+  double relax_ = 1, last_error_ = 0;
   Inner inner_;
 };
 
