@@ -60,6 +60,10 @@ PAIRS = {
     # interior-point family on global problems (gfc3d_driver for Siconos)
     # proximal point: inner Newton (as Siconos' PROX) or inner NSGS, both against PROX
     "ppa": [("ppa", [], "prox"), ("ppa-nsgs", [], "prox")],
+    # fixed points: De Saxce's (fixed rho as DSFP, and the self-adaptive
+    # step), Tresca's, Panagiotopoulos'
+    "fixed-point": [("fp-ds", [], "dsfp"), ("fp-ds", ["--step", "self-adaptive"], "dsfp"),
+                    ("tresca", [], "tresca"), ("pana", [], "pfp")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }

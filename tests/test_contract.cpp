@@ -243,6 +243,7 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
   round_trip(std::vector<ContactOrdering>{ContactOrdering::Natural, ContactOrdering::ShuffledOnce,
                                           ContactOrdering::ShuffledEachSweep,
                                           ContactOrdering::Coloured});
+  round_trip(std::vector<StepRule>{StepRule::SelfAdaptive, StepRule::Fixed});
   // the catalogue offers exactly the enum's names, its default among them
   const registry::SolverEntry& e = registry::find("nsn-ac");
   registry::SolveRequest req = registry::make_request(e);

@@ -5,12 +5,7 @@
 // allocation between FCSOLVE_NO_MALLOC_BEGIN/END (Jacobian assembly, line
 // search, velocity and G updates, error, fallback sweeps) fails the test, in
 // release builds too.
-#include <stdexcept>
-
-#define eigen_assert(x) \
-  do {                  \
-    if (!(x)) throw std::logic_error("eigen_assert failed: " #x); \
-  } while (false)
+#include "throwing_eigen_assert.hpp"  // first: before Eigen
 
 #include "test_support.hpp"
 

@@ -2,12 +2,7 @@
 // EIGEN_RUNTIME_NO_MALLOC and an eigen_assert that throws, so any Eigen heap
 // allocation between FCSOLVE_NO_MALLOC_BEGIN/END (the sweeps and the error
 // evaluations of Nsgs::solve) fails the test, in release builds too.
-#include <stdexcept>
-
-#define eigen_assert(x) \
-  do {                  \
-    if (!(x)) throw std::logic_error("eigen_assert failed: " #x); \
-  } while (false)
+#include "throwing_eigen_assert.hpp"  // first: before Eigen
 
 #include "test_support.hpp"
 

@@ -144,6 +144,29 @@ class Nsgs {
     }
   }
 
+  /// Re-reads q and mu of the viewed problem after the caller changed them
+  /// in place, W unchanged: re-prepares the local data and the error scale
+  /// and keeps W's storage. The fixed points (fixed_point/) change the
+  /// threshold (in mu's place) and q of their subproblems every outer
+  /// iteration. Allocates nothing.
+  Nsgs& refresh_q_and_mu() {
+    if (!problem_) throw UsageError("Nsgs::refresh_q_and_mu() called before compute()");
+    const LocalProblemView& p = *problem_;
+    for (Index a = 0; a < p.num_contacts(); ++a)
+      data_[a] = LocalSolver::prepare(storage_.diagonal_block(a), p.mu[a], settings_.local);
+    if constexpr (use_slots) {
+      if (colouring_) {
+        const std::vector<Index>& contacts = colouring_->contacts;
+        for (Index i = 0; i < static_cast<Index>(contacts.size()); ++i) {
+          slots_.q.template segment<d>(i * d) = p.q.template segment<d>(contacts[i] * d);
+          slots_.data[i] = data_[contacts[i]];
+        }
+      }
+    }
+    scale_ = error_scale(p.q.norm());
+    return *this;
+  }
+
   /// Solves from the warm start r (overwritten by the solution) and writes
   /// u = W r + q. Returns info().
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <fcsolve/solvers/auto_entries.hpp>
+#include <fcsolve/solvers/fixed_point_entries.hpp>
 #include <fcsolve/solvers/nsgs_entries.hpp>
 #include <fcsolve/solvers/registry.hpp>
 #include <fcsolve/solvers/ipm_entries.hpp>
@@ -24,6 +25,7 @@ inline const std::vector<SolverEntry>& entries() {
     add_newton_solvers(v);
     add_ipm_solvers(v);
     add_ppa_solvers(v);
+    add_fixed_point_solvers(v);
     // `auto` runs the entries above by name (solvers/auto_entries.hpp).
     add_auto_solvers(v);
     return v;

@@ -1,4 +1,5 @@
-// Catalogue entries of the VI projection family: vi-fp, vi-eg.
+// Catalogue entries of the VI projection family: vi-fp, vi-eg (and the
+// projection machinery of fp-ds, solvers/fixed_point_entries.hpp).
 #pragma once
 
 #include <fcsolve/core/solver_contract.hpp>
@@ -21,6 +22,7 @@ SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
   typename Solver::Settings s;
   static_cast<SolverSettings&>(s) = req.common;
   s.variant = variant;
+  s.step = req.settings.enumerated<StepRule>("step");
   s.rho = req.settings.real("rho");
   s.ratio_max = req.settings.real("ratio_max");
   s.ratio_min = req.settings.real("ratio_min");
@@ -38,9 +40,12 @@ inline LocalSolveFunction projected_solver(ProjectionVariant variant) {
   };
 }
 
-inline std::vector<SettingSpec> projected_settings() {
+/// The entries' settings; `step` defaults to `step_rule` (vi-*: the
+/// struct's self-adaptive rule, fp-ds: fixed).
+inline std::vector<SettingSpec> projected_settings(StepRule step_rule) {
   const ProjectedFixedPointSettings d;
-  return {real_setting("rho", d.rho, "initial step (0: 1 / ||W||_1)", 0.0),
+  return {enum_setting("step", step_rule, "step rule: self-adaptive (Khobotov) or fixed rho"),
+          real_setting("rho", d.rho, "initial (fixed: the) step (0: 1 / ||W||_1)", 0.0),
           real_setting("ratio_max", d.ratio_max,
                        "shrink rho while rho ||F(r)-F(rb)|| > ratio_max ||r-rb||", 1e-6, 1.0),
           real_setting("ratio_min", d.ratio_min, "grow rho when the ratio falls below this", 0.0,
@@ -48,12 +53,13 @@ inline std::vector<SettingSpec> projected_settings() {
 }
 
 inline SolverEntry projected_entry(std::string name, std::string summary,
-                                   ProjectionVariant variant) {
+                                   ProjectionVariant variant, std::string family = "vi",
+                                   StepRule step_rule = ProjectedFixedPointSettings().step) {
   SolverEntry e;
   e.name = std::move(name);
-  e.family = "vi";
+  e.family = std::move(family);
   e.summary = std::move(summary);
-  e.settings = projected_settings();
+  e.settings = projected_settings(step_rule);
   e.default_max_iter = 20000;
   e.solve_local = projected_solver(variant);
   return e;

@@ -26,3 +26,27 @@ inline constexpr bool is_storage_v = is_storage<S>::value;
 inline constexpr Index kDenseStorageMaxContacts = 16;
 
 }  // namespace fcsolve
+
+namespace fcsolve {
+
+/// The same storage kind with blocks of dimension D: the subproblems of a
+/// splitting of the contact law (fixed_point/panagiotopoulos.hpp: normal
+/// blocks 1 x 1, tangential blocks (d-1) x (d-1)).
+template <class S, int D>
+struct rebind_block_dim;
+template <int D0, int D>
+struct rebind_block_dim<SparseStorage<D0>, D> {
+  using type = SparseStorage<D>;
+};
+template <int D0, class Scalar, int D>
+struct rebind_block_dim<DenseStorage<D0, Scalar>, D> {
+  using type = DenseStorage<D, Scalar>;
+};
+template <int D0, class Scalar, int D>
+struct rebind_block_dim<BlockSparseStorage<D0, Scalar>, D> {
+  using type = BlockSparseStorage<D, Scalar>;
+};
+template <class S, int D>
+using rebind_block_dim_t = typename rebind_block_dim<S, D>::type;
+
+}  // namespace fcsolve

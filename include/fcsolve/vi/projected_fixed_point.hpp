@@ -11,8 +11,15 @@
 // EG-VI-UPK: rho shrinks until rho ||F(r) - F(rb)|| <= L ||r - rb|| and grows
 // again when the ratio falls below L_min. F(r) is u~ at r, so the FCLIB error
 // ||r - P_K(r - F(r))|| / ||q|| comes for free every iteration.
+//
+// The fixed point with StepRule::Fixed is De Saxce's fixed point (De Saxce
+// & Feng 1998; Acary, Bremond & Huber 2018, sec. 4.1 [FP-DS], Siconos'
+// DSFP): r <- P_K(r - rho (u + g(u))), u = W r + q, with a constant rho.
+// StepRule::SelfAdaptive is the rule above ([FP-VI-UPK]).
 #pragma once
 
+#include <fcsolve/config.hpp>
+#include <fcsolve/core/enum_names.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/core/solver_settings.hpp>
@@ -29,9 +36,18 @@ namespace fcsolve {
 
 enum class ProjectionVariant { FixedPoint, ExtraGradient };
 
+/// How rho evolves: the self-adaptive rule above, or constant.
+enum class StepRule { SelfAdaptive, Fixed };
+
+inline constexpr EnumName<StepRule> kStepRuleNames[] = {{StepRule::SelfAdaptive, "self-adaptive"},
+                                                       {StepRule::Fixed, "fixed"}};
+constexpr const auto& enum_names(StepRule) { return kStepRuleNames; }
+inline const char* to_string(StepRule r) { return enum_to_string(r); }
+
 struct ProjectedFixedPointSettings : SolverSettings {
   ProjectionVariant variant = ProjectionVariant::ExtraGradient;
-  double rho = 0;            ///< initial step; 0: 1 / ||W||_inf-ish estimate
+  StepRule step = StepRule::SelfAdaptive;
+  double rho = 0;            ///< initial (fixed: the) step; 0: 1 / ||W||_1
   double shrink = 2.0 / 3.0;  ///< rho <- shrink * rho while the step is too long
   double ratio_max = 0.9;    ///< L: accept when rho ||F(r) - F(rb)|| <= L ||r - rb||
   double ratio_min = 0.3;    ///< L_min: grow rho when the ratio falls below it
@@ -88,23 +104,12 @@ class ProjectedFixedPoint {
     double error = evaluate(r, F_);  // F_ = F(r), error of r
     for (int k = 1; k <= settings_.max_iter && error > settings_.tol; ++k) {
       info_.iterations = k;
-      // rb = P_K(r - rho F(r)), shrinking rho until the step is short enough
-      double ratio = 0;
-      for (int ls = 0; ls <= settings_.max_line_search; ++ls) {
-        project_step(r, F_, rho, rb_);
-        const double dr = (r - rb_).norm();
-        if (dr == 0) break;
-        evaluate(rb_, Fb_);
-        ratio = rho * (F_ - Fb_).norm() / dr;
-        if (ratio <= settings_.ratio_max) break;
-        rho *= settings_.shrink;
-      }
-      if (settings_.variant == ProjectionVariant::ExtraGradient) {
-        project_step(r, Fb_, rho, rb_);  // r <- P_K(r - rho F(rb))
-      }
+      FCSOLVE_NO_MALLOC_BEGIN();
+      const double ratio = step(r, rho);  // rb_ = the next iterate
       r = rb_;
       error = evaluate(r, F_);
-      if (ratio < settings_.ratio_min) rho /= settings_.shrink;
+      FCSOLVE_NO_MALLOC_END();
+      if (settings_.step == StepRule::SelfAdaptive && ratio < settings_.ratio_min) rho /= settings_.shrink;
       if (!std::isfinite(error)) { info_.status = Status::NumericalError; break; }
       if (settings_.record_history) info_.history.push_back(error);
       if (callback_requests_stop(settings_.callback,
@@ -125,6 +130,33 @@ class ProjectedFixedPoint {
   void check_solve_arguments(const Eigen::Ref<Vector>& r, const Eigen::Ref<Vector>& u) const {
     const Index m = problem_ ? problem_->size() : 0;
     fcsolve::check_solve_arguments("ProjectedFixedPoint", problem_.has_value(), r, m, u, m, "u");
+  }
+
+  /// rb_ = the next iterate from r (F_ = F(r)). The self-adaptive rule
+  /// shrinks rho until the step is short enough and returns the accepted
+  /// ratio rho ||F(r) - F(rb)|| / ||r - rb||; the fixed rule returns 1.
+  double step(const Eigen::Ref<const Vector>& r, double& rho) {
+    const bool extragradient = settings_.variant == ProjectionVariant::ExtraGradient;
+    if (settings_.step == StepRule::Fixed) {
+      project_step(r, F_, rho, rb_);
+      if (extragradient) {
+        evaluate(rb_, Fb_);
+        project_step(r, Fb_, rho, rb_);  // r <- P_K(r - rho F(rb))
+      }
+      return 1;
+    }
+    double ratio = 0;
+    for (int ls = 0; ls <= settings_.max_line_search; ++ls) {
+      project_step(r, F_, rho, rb_);
+      const double dr = (r - rb_).norm();
+      if (dr == 0) break;
+      evaluate(rb_, Fb_);
+      ratio = rho * (F_ - Fb_).norm() / dr;
+      if (ratio <= settings_.ratio_max) break;
+      rho *= settings_.shrink;
+    }
+    if (extragradient) project_step(r, Fb_, rho, rb_);  // r <- P_K(r - rho F(rb))
+    return ratio;
   }
 
   /// F = u~(x) = W x + q + g(W x + q); returns the FCLIB error of x. u_ = W x + q.

@@ -96,6 +96,8 @@ SOLVERS = {
     "prox": _spec("FRICTION_3D_PROX", "GLOBAL_FRICTION_3D_PROX_WR"),
     "aclm": _spec("FRICTION_3D_ACLMFP", "GLOBAL_FRICTION_3D_ACLMFP"),
     "tresca": _spec("FRICTION_3D_TFP", "GLOBAL_FRICTION_3D_TFP_WR"),
+    "dsfp": _spec("FRICTION_3D_DSFP", "GLOBAL_FRICTION_3D_DSFP_WR"),
+    "pfp": _spec("FRICTION_3D_PFP", REDUCE),
     # native gfc3d solvers, global problems only
     "ipm": _spec(None, "GLOBAL_FRICTION_3D_IPM"),
     "gnsgs-wr": _spec(None, "GLOBAL_FRICTION_3D_NSGS_WR"),
