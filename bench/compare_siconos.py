@@ -60,6 +60,8 @@ PAIRS = {
     # interior-point family on global problems (gfc3d_driver for Siconos)
     # proximal point: inner Newton (as Siconos' PROX) or inner NSGS, both against PROX
     "ppa": [("ppa", [], "prox"), ("ppa-nsgs", [], "prox")],
+    # VI projection family: fixed point and extragradient, self-adaptive step
+    "vi": [("vi-fp", [], "vi-fp"), ("vi-eg", [], "vi-eg")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }
