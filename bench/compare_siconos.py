@@ -64,6 +64,8 @@ PAIRS = {
     # step), Tresca's, Panagiotopoulos'
     "fixed-point": [("fp-ds", [], "dsfp"), ("fp-ds", ["--step", "self-adaptive"], "dsfp"),
                     ("tresca", [], "tresca"), ("pana", [], "pfp")],
+    # VI projection family: fixed point and extragradient, self-adaptive step
+    "vi": [("vi-fp", [], "vi-fp"), ("vi-eg", [], "vi-eg")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }

@@ -5,6 +5,7 @@
 #include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/solvers/dispatch.hpp>
 #include <fcsolve/solvers/registry.hpp>
+#include <fcsolve/storage/block_sparse.hpp>
 #include <fcsolve/vi.hpp>
 
 #include <utility>
@@ -32,7 +33,9 @@ SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
 
 inline LocalSolveFunction projected_solver(ProjectionVariant variant) {
   return [variant](const LocalProblemView& p, const SolveRequest& req) {
-    return dispatch_cone_and_storage<SparseStorage>(p, [&](auto types) {
+    // block rows (BSR): W r is a row-by-row product, without the scatter and
+    // the zeroing of a column-major product; F is evaluated every trial step
+    return dispatch_cone_and_storage<BlockSparseStorage>(p, [&](auto types) {
       using T = decltype(types);
       return solve_projected<ProjectedFixedPoint<typename T::Cone, typename T::Storage>>(p, req,
                                                                                        variant);

@@ -9,8 +9,22 @@
 //
 // with the self-adaptive step of Khobotov (1987) as used by FP-VI-UPK /
 // EG-VI-UPK: rho shrinks until rho ||F(r) - F(rb)|| <= L ||r - rb|| and grows
-// again when the ratio falls below L_min. F(r) is u~ at r, so the FCLIB error
-// ||r - P_K(r - F(r))|| / ||q|| comes for free every iteration.
+// again when the ratio falls below L_min.
+//
+// Cost per step: the fixed point takes rb, F(rb) of the accepted trial as the
+// next iterate (one evaluation of F per trial, none more); the extragradient
+// needs F(r) at its new iterate as well. The FCLIB error
+// e(r) = ||r - P_K(r - F(r))|| / ||q|| is not computed every step: the trial
+// step already gives e_rho(r) = ||r - P_K(r - rho F(r))||, and since
+// rho -> e_rho is nondecreasing while rho -> e_rho / rho is nonincreasing
+// (Gafni & Bertsekas 1984, Lemma 1; docs/references.md)
+//
+//   e_rho / max(1, rho)  <=  e_1 = e(r) ||q||  <=  e_rho / min(1, rho).
+//
+// The lower bound proves that r has not converged. Otherwise the exact error
+// (one projection per contact) is computed when the upper bound or a
+// prediction from the last exact value says it may be below tol, or every
+// error_refresh steps; the stopping decision is always the exact error's.
 //
 // The fixed point with StepRule::Fixed is De Saxce's fixed point (De Saxce
 // & Feng 1998; Acary, Bremond & Huber 2018, sec. 4.1 [FP-DS], Siconos'
@@ -28,6 +42,7 @@
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/validate.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -52,6 +67,9 @@ struct ProjectedFixedPointSettings : SolverSettings {
   double ratio_max = 0.9;    ///< L: accept when rho ||F(r) - F(rb)|| <= L ||r - rb||
   double ratio_min = 0.3;    ///< L_min: grow rho when the ratio falls below it
   int max_line_search = 50;
+  /// Steps between two exact error evaluations while the error bounds of the
+  /// trial step leave the convergence test open (file comment).
+  int error_refresh = 10;
 };
 
 template <class Cone, class Storage>
@@ -78,6 +96,7 @@ class ProjectedFixedPoint {
     Fb_.resize(m);
     rb_.resize(m);
     u_.resize(m);
+    ub_.resize(m);
     scale_ = error_scale(p.q.norm());
     // ||W||_1 bounds the Lipschitz constant of r -> W r; start at 1 / that
     double norm1 = 0;
@@ -100,25 +119,44 @@ class ProjectedFixedPoint {
     info_.iterations = 0;
     info_.history.clear();
     info_.message.clear();
-    double rho = rho0_;
-    double error = evaluate(r, F_);  // F_ = F(r), error of r
-    for (int k = 1; k <= settings_.max_iter && error > settings_.tol; ++k) {
+    rho_ = rho0_;
+    predict_ = 1;
+    since_exact_ = 0;
+    evaluate(r, F_, u_);  // F_ = F(r), u_ = W r + q
+    double error = exact_error(r);
+    bool converged = error <= settings_.tol;
+    if (!converged) trial_step(r);
+    for (int k = 1; k <= settings_.max_iter && !converged; ++k) {
       info_.iterations = k;
       FCSOLVE_NO_MALLOC_BEGIN();
-      const double ratio = step(r, rho);  // rb_ = the next iterate
-      r = rb_;
-      error = evaluate(r, F_);
+      if (settings_.variant == ProjectionVariant::ExtraGradient) {
+        project_step(r, Fb_, rho_, rb_);  // r <- P_K(r - rho F(rb))
+        r = rb_;
+        evaluate(r, F_, u_);
+      } else {  // r <- rb, whose F and u the trial computed
+        r = rb_;
+        F_.swap(Fb_);
+        u_.swap(ub_);
+      }
+      if (settings_.step == StepRule::SelfAdaptive && ratio_ < settings_.ratio_min)
+        rho_ /= settings_.shrink;
+      trial_step(r);  // the next trial point, and the bounds on e(r)
+      bool exact = false;
+      error = check_error(r, exact);
       FCSOLVE_NO_MALLOC_END();
-      if (settings_.step == StepRule::SelfAdaptive && ratio < settings_.ratio_min) rho /= settings_.shrink;
       if (!std::isfinite(error)) { info_.status = Status::NumericalError; break; }
+      converged = error <= settings_.tol;
       if (settings_.record_history) info_.history.push_back(error);
       if (callback_requests_stop(settings_.callback,
-                                 IterationInfo{k, error, true, clock.seconds()})) {
+                                 IterationInfo{k, error, exact, clock.seconds()})) {
         info_.status = Status::Stopped;
         break;
       }
+      if (converged) break;
       if (clock.seconds() > settings_.max_time) { info_.status = Status::TimeLimit; break; }
     }
+    // the reported error is the exact one, whichever test ended the loop
+    if (info_.status != Status::NumericalError) error = exact_error(r);
     if (error <= settings_.tol) info_.status = Status::Converged;
     u = u_;
     info_.error = error;
@@ -132,64 +170,97 @@ class ProjectedFixedPoint {
     fcsolve::check_solve_arguments("ProjectedFixedPoint", problem_.has_value(), r, m, u, m, "u");
   }
 
-  /// rb_ = the next iterate from r (F_ = F(r)). The self-adaptive rule
-  /// shrinks rho until the step is short enough and returns the accepted
-  /// ratio rho ||F(r) - F(rb)|| / ||r - rb||; the fixed rule returns 1.
-  double step(const Eigen::Ref<const Vector>& r, double& rho) {
-    const bool extragradient = settings_.variant == ProjectionVariant::ExtraGradient;
-    if (settings_.step == StepRule::Fixed) {
-      project_step(r, F_, rho, rb_);
-      if (extragradient) {
-        evaluate(rb_, Fb_);
-        project_step(r, Fb_, rho, rb_);  // r <- P_K(r - rho F(rb))
-      }
-      return 1;
+  /// rb = P_K(r - rho F(r)) with F_ = F(r), shrinking rho until
+  /// rho ||F(r) - F(rb)|| <= L ||r - rb|| (Khobotov 1987; StepRule::Fixed:
+  /// one trial, rho kept). Leaves rb_, Fb_, ub_ at the accepted trial,
+  /// step_residual_ = ||r - rb||, ratio_.
+  void trial_step(const Eigen::Ref<const Vector>& r) {
+    ratio_ = 0;
+    const bool fixed = settings_.step == StepRule::Fixed;
+    for (int ls = 0; ls <= (fixed ? 0 : settings_.max_line_search); ++ls) {
+      step_residual_ = std::sqrt(project_step(r, F_, rho_, rb_));
+      const double dF = std::sqrt(evaluate(rb_, Fb_, ub_, &F_));
+      if (step_residual_ == 0) break;
+      ratio_ = rho_ * dF / step_residual_;
+      if (fixed || ratio_ <= settings_.ratio_max) break;
+      rho_ *= settings_.shrink;
     }
-    double ratio = 0;
-    for (int ls = 0; ls <= settings_.max_line_search; ++ls) {
-      project_step(r, F_, rho, rb_);
-      const double dr = (r - rb_).norm();
-      if (dr == 0) break;
-      evaluate(rb_, Fb_);
-      ratio = rho * (F_ - Fb_).norm() / dr;
-      if (ratio <= settings_.ratio_max) break;
-      rho *= settings_.shrink;
-    }
-    if (extragradient) project_step(r, Fb_, rho, rb_);  // r <- P_K(r - rho F(rb))
-    return ratio;
   }
 
-  /// F = u~(x) = W x + q + g(W x + q); returns the FCLIB error of x. u_ = W x + q.
-  double evaluate(const Eigen::Ref<const Vector>& x, Vector& F) {
+  /// The error of r (F_ = F(r)) as the file comment bounds it from the last
+  /// trial step; exact (one projection) only when the bounds leave it open
+  /// and the prediction from the last exact value, or the refresh, asks.
+  double check_error(const Eigen::Ref<const Vector>& r, bool& exact) {
+    const double upper = step_residual_ / (std::min(1.0, rho_) * scale_);
+    const double lower = step_residual_ / (std::max(1.0, rho_) * scale_);
+    ++since_exact_;
+    exact = false;
+    const double predicted = std::clamp(predict_ * upper, lower, upper);
+    if (lower > settings_.tol) return predicted;  // not converged, proven
+    // upper <= tol proves convergence up to rounding; the exact error, once,
+    // makes the stopping decision the FCLIB one
+    if (upper > settings_.tol && predicted > settings_.tol &&
+        since_exact_ < settings_.error_refresh)
+      return predicted;
+    exact = true;
+    const double error = exact_error(r);
+    predict_ = upper > 0 ? error / upper : 1;
+    since_exact_ = 0;
+    return error;
+  }
+
+  /// F = u~(x) = W x + q + g(W x + q), u = W x + q; with Fref, returns
+  /// ||F - Fref||^2 (the Khobotov ratio's numerator), in the same pass.
+  double evaluate(const Eigen::Ref<const Vector>& x, Vector& F, Vector& u,
+                  const Vector* Fref = nullptr) const {
     const LocalProblemView& p = *problem_;
-    W_.multiply(x, u_);
-    u_ += p.q;
+    W_.multiply(x, u);
+    u += p.q;
     double sq = 0;
     for (Index a = 0; a < p.num_contacts(); ++a) {
-      const typename Cone::Vec ua = u_.template segment<d>(a * d);
+      const typename Cone::Vec ua = u.template segment<d>(a * d);
       const typename Cone::Vec Fa = Cone::modified_velocity(ua, p.mu[a]);
       F.template segment<d>(a * d) = Fa;
+      if (Fref) sq += (Fa - Fref->template segment<d>(a * d)).squaredNorm();
+    }
+    return sq;
+  }
+
+  /// FCLIB error ||x - P_K(x - F(x))|| / ||q|| with F_ = F(x).
+  double exact_error(const Eigen::Ref<const Vector>& x) const {
+    const LocalProblemView& p = *problem_;
+    double sq = 0;
+    for (Index a = 0; a < p.num_contacts(); ++a) {
       const typename Cone::Vec xa = x.template segment<d>(a * d);
+      const typename Cone::Vec Fa = F_.template segment<d>(a * d);
       sq += (xa - Cone::project(typename Cone::Vec(xa - Fa), p.mu[a])).squaredNorm();
     }
     return std::sqrt(sq) / scale_;
   }
 
-  /// out = P_K(x - rho G), contact by contact.
-  void project_step(const Eigen::Ref<const Vector>& x, const Vector& G, double rho, Vector& out) const {
+  /// out = P_K(x - rho G), contact by contact; returns ||x - out||^2.
+  double project_step(const Eigen::Ref<const Vector>& x, const Vector& G, double rho,
+                      Vector& out) const {
     const LocalProblemView& p = *problem_;
+    double sq = 0;
     for (Index a = 0; a < p.num_contacts(); ++a) {
-      const typename Cone::Vec z = x.template segment<d>(a * d) - rho * G.template segment<d>(a * d);
-      out.template segment<d>(a * d) = Cone::project(z, p.mu[a]);
+      const typename Cone::Vec xa = x.template segment<d>(a * d);
+      const typename Cone::Vec pa = Cone::project(typename Cone::Vec(xa - rho * G.template segment<d>(a * d)), p.mu[a]);
+      out.template segment<d>(a * d) = pa;
+      sq += (xa - pa).squaredNorm();
     }
+    return sq;
   }
 
   Settings settings_;
   SolverInfo info_;
   std::optional<LocalProblemView> problem_;
   Storage W_;
-  Vector F_, Fb_, rb_, u_;
+  Vector F_, Fb_, rb_, u_, ub_;  // F and u at r and at the trial point rb
   double scale_ = 1, rho0_ = 1;
+  double rho_ = 1, ratio_ = 0, step_residual_ = 0;  // the current step
+  double predict_ = 1;   // e(r) / upper bound at the last exact evaluation
+  int since_exact_ = 0;  // steps since the last exact error
 };
 
 }  // namespace fcsolve
