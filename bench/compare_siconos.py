@@ -60,6 +60,8 @@ PAIRS = {
     # interior-point family on global problems (gfc3d_driver for Siconos)
     # proximal point: inner Newton (as Siconos' PROX) or inner NSGS, both against PROX
     "ppa": [("ppa", [], "prox"), ("ppa-nsgs", [], "prox")],
+    # ADMM with De Saxce's shift against Siconos' ADMM
+    "admm": [("admm", [], "admm")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }
