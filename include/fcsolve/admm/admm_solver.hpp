@@ -5,14 +5,17 @@
 //   min 1/2 r^T W r + (q + s)^T r   s.t.  r = z,  z in K,
 // and ADMM on that QP with s updated at every iterate solves the Coulomb
 // problem itself, not its convex relaxation (s = 0). Scaled form (xi = y/rho):
-//   r   = (W_s + rho I)^-1 ( rho (zh - xih) - q - s - W_a z )     (r-update)
+//   r   = (W_s + rho I)^-1 ( rho (zh - xih) - q - s - W_a r_prev )  (r-update)
 //   rr  = alpha r + (1 - alpha) zh                                   (over-relaxation)
 //   z   = P_K(rr + xih),   xi = xih + rr - z                         (projection, dual step)
-//   s   = g(W z + q)                                                  (De Saxce's shift)
+//   s   = g(W r + q)                                                  (De Saxce's shift)
 // W_s = (W + W^T)/2 is factorised (W of real data is symmetric only up to
 // rounding); its antisymmetric rest W_a = (W - W^T)/2 is lagged on the
-// right-hand side at the last z, so that a fixed point (r = z) satisfies
+// right-hand side at the last r, so that a fixed point (r = z) satisfies
 // W z + q + s = -rho xi, xi in N_K(z): it solves FC/II with the real W.
+// The shift is taken at r, as Siconos' ADMM does: taken at z instead (same
+// fixed points) it needed 100 times more iterations on BoxesStack1 and
+// Capsules-i97-269 (docs/results.md).
 // (zh, xih) = (z, xi) without acceleration; with it, Nesterov's extrapolation
 // with restart of Goldstein, O'Donoghue, Setzer & Baraniuk 2014 (alg. 8).
 // rho: a spectral rho0 = sqrt(L m) (L/m)^0.2 (sqrt(L m) is the optimal rho of
@@ -20,7 +23,7 @@
 // residual balancing (Boyd et al. 2011, eq. 3.13) or the OSQP rule (Stellato
 // et al. 2020, sec. 5.2); a new rho refactorises W_s + rho I (outside the
 // no-allocation bracket) and rescales xi = y / rho.
-// The returned r is the iterate z (in K) of least FCLIB error: u = W z + q is
+// The returned r is the iterate r of least FCLIB error: u = W r + q is
 // computed for the shift anyway, so the error costs one projection per
 // contact and is evaluated every iteration; the ADMM residuals only steer rho
 // and the restart, never convergence.
@@ -77,14 +80,22 @@ class Admm {
     Wa_.prune(0.0);
     Wa_.makeCompressed();
     factorization_.compute(Ws);
-    for (Vector* v : {&r_, &z_, &xi_, &zh_, &xih_, &z_prev_, &xi_prev_, &b_, &u_, &s_, &best_z_,
+    for (Vector* v : {&r_, &z_, &xi_, &zh_, &xih_, &z_prev_, &xi_prev_, &b_, &u_, &s_, &best_r_,
                       &best_u_})
       v->setZero(m);
     scale_ = error_scale(p.q.norm());
     rho0_ = initial_rho(Ws);
     info_ = SolverInfo();
     factorizations_ = 0;
+    rho_floor_ = 0;
     factorization_ok_ = refactorize(rho0_);
+    // W_s + rho0 I indefinite (W_s is semidefinite only up to rounding):
+    // a larger rho0, up to 1e6 times
+    for (int i = 0; i < 6 && !factorization_ok_; ++i) {
+      rho0_ *= 10;
+      rho_floor_ = rho0_;
+      factorization_ok_ = refactorize(rho0_);
+    }
     info_.setup_seconds = clock.seconds();
     return *this;
   }
@@ -99,10 +110,11 @@ class Admm {
     info_.message.clear();
     if (rho_ != rho0_) factorization_ok_ = refactorize(rho0_);
     z_ = r;
+    r_ = r;
     xi_.setZero();
-    double error = velocity_and_error();  // u_, s_ at z_
+    double error = velocity_and_error();  // u_, s_ at r_
     best_error_ = error;
-    best_z_ = z_;
+    best_r_ = r_;
     best_u_ = u_;
     if (!factorization_ok_) {
       info_.status = Status::NumericalError;
@@ -111,7 +123,7 @@ class Admm {
       iterate(clock);
     }
     if (best_error_ <= settings_.tol) info_.status = Status::Converged;
-    r = best_z_;
+    r = best_r_;
     u = best_u_;
     info_.error = best_error_;
     info_.solve_seconds = clock.seconds();
@@ -133,7 +145,7 @@ class Admm {
       FCSOLVE_NO_MALLOC_BEGIN();
       // r-update: right-hand side, then the factorised solve
       b_ = rho_ * (zh_ - xih_) - problem_->q - s_;
-      if (Wa_.nonZeros() > 0) b_.noalias() -= Wa_ * z_;
+      if (Wa_.nonZeros() > 0) b_.noalias() -= Wa_ * r_;
       if constexpr (Factorization::solve_allocates) FCSOLVE_NO_MALLOC_END();
       factorization_.solve(b_, r_);
       if constexpr (Factorization::solve_allocates) FCSOLVE_NO_MALLOC_BEGIN();
@@ -154,7 +166,7 @@ class Admm {
       const double error = velocity_and_error();
       if (error < best_error_) {
         best_error_ = error;
-        best_z_ = z_;
+        best_r_ = r_;
         best_u_ = u_;
       }
       // Goldstein et al. 2014, alg. 8: extrapolate while the combined residual
@@ -209,17 +221,17 @@ class Admm {
     }
   }
 
-  /// u_ = W z + q, s_ = g(u_); returns the FCLIB error of z_.
+  /// u_ = W r + q, s_ = g(u_); returns the FCLIB error of r_.
   double velocity_and_error() {
     const LocalProblemView& p = *problem_;
-    W_.multiply(z_, u_);
+    W_.multiply(r_, u_);
     u_ += p.q;
     double sq = 0;
     for (Index c = 0; c < p.num_contacts(); ++c) {
-      const Vec uc = u_.template segment<d>(c * d), zc = z_.template segment<d>(c * d);
+      const Vec uc = u_.template segment<d>(c * d), rc = r_.template segment<d>(c * d);
       const Vec shift = Cone::de_saxce_shift(uc, p.mu[c]);
       s_.template segment<d>(c * d) = shift;
-      sq += (zc - Cone::project(Vec(zc - uc - shift), p.mu[c])).squaredNorm();
+      sq += (rc - Cone::project(Vec(rc - uc - shift), p.mu[c])).squaredNorm();
     }
     return std::sqrt(sq) / scale_;
   }
@@ -242,9 +254,16 @@ class Admm {
       const double f = std::sqrt(rp / rd);
       if (f > 5 || f < 0.2) factor = f;
     }
+    if (factor < 1 && rho_ * factor < rho_floor_) return false;
     if (factor == 1) return false;
     const double old = rho_;
     factorization_ok_ = refactorize(rho_ * factor);
+    if (!factorization_ok_ && factor < 1) {
+      // W_s is positive semidefinite only up to rounding: a small rho can
+      // leave W_s + rho I indefinite. Keep the last rho and go no lower.
+      rho_floor_ = old;
+      factorization_ok_ = refactorize(old);
+    }
     xi_ *= old / rho_;
     return true;
   }
@@ -284,8 +303,8 @@ class Admm {
   Storage W_;
   SparseMatrix Wa_;
   Factorization factorization_;
-  Vector r_, z_, xi_, zh_, xih_, z_prev_, xi_prev_, b_, u_, s_, best_z_, best_u_;
-  double scale_ = 1, rho0_ = 1, rho_ = 1, best_error_ = 0;
+  Vector r_, z_, xi_, zh_, xih_, z_prev_, xi_prev_, b_, u_, s_, best_r_, best_u_;
+  double scale_ = 1, rho0_ = 1, rho_ = 1, rho_floor_ = 0, best_error_ = 0;
   int factorizations_ = 0;
   bool factorization_ok_ = false;
 };

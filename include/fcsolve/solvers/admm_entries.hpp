@@ -34,7 +34,7 @@ SolveOutcome solve_admm(const LocalProblemView& p, const SolveRequest& req) {
 inline std::vector<SettingSpec> admm_settings() {
   const AdmmSettings d;
   return {enum_setting("rho_init", d.rho_init,
-                       "rho0: spectral (sqrt(L m) (L/m)^0.2, L = lambda_max(W), m = min W_ii) or given"),
+                       "rho0: given (rho) or spectral (rho sqrt(L m) (L/m)^0.2, L = lambda_max(W), m = min W_ii)"),
           enum_setting("rho_strategy", d.rho_strategy,
                        "rho updates: residual balancing (x2, /2), OSQP's sqrt(r_p/r_d), or constant"),
           real_setting("rho", d.rho, "rho0 (rho_init = given) or a factor on the spectral rho0", 1e-300),
