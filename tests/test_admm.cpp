@@ -21,6 +21,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,31 @@ TEST_CASE("ADMM: one contact in closed form (3D, 2D, frictionless)", "[admm]") {
     const Vector r = solve_checked(admm, p);
     CHECK(admm.info().converged());
     CHECK((r - vec({2.0, 0.0})).norm() <= 1e-7);
+  }
+}
+
+TEST_CASE("ADMM: many coupled contacts, 2D and frictionless, sparse storage", "[admm][nomalloc]") {
+  // W = 2 I with 0.5 between neighbouring unknowns: symmetric, diagonally
+  // dominant; q alternates pushes in and pulls out, with tangential drift
+  for (int d : {2, 1}) {
+    const Index nc = 30, m = d * nc;
+    DenseMatrix W = 2.0 * DenseMatrix::Identity(m, m);
+    for (Index i = 0; i + 1 < m; ++i) W(i, i + 1) = W(i + 1, i) = 0.5;
+    Vector q(m);
+    for (Index i = 0; i < m; ++i) q[i] = (i % d == 0) ? (i % 3 == 0 ? 0.4 : -1.0) : 0.3 * std::cos(double(i));
+    const LocalProblem p = make_local(d, W, q, Vector::Constant(nc, 0.4));
+    AdmmSettings s;
+    s.max_iter = 20000;
+    INFO("d = " << d);
+    if (d == 2) {
+      EigenSparseAdmm<Coulomb2D> admm(s);
+      solve_checked(admm, p);
+      CHECK(admm.info().converged());
+    } else {
+      EigenSparseAdmm<Frictionless> admm(s);
+      solve_checked(admm, p);
+      CHECK(admm.info().converged());
+    }
   }
 }
 
