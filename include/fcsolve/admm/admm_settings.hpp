@@ -40,7 +40,9 @@ struct AdmmSettings : SolverSettings {
   double relaxation = 1.0;     ///< over-relaxation alpha in [1, 1.8] (1: none)
   bool acceleration = true;    ///< Nesterov's extrapolation with restart (Goldstein et al. 2014, alg. 8)
   double restart_factor = 0.999;  ///< eta: restart when the combined residual grows past c_{k-1} / eta
-  int adapt_interval = 10;     ///< iterations between two rho updates
+  /// iterations between two rho updates (30 measured better than 10 on the
+  /// Capsules: fewer refactorisations, rho settles; docs/results.md)
+  int adapt_interval = 30;
   int max_refactorizations = 40;  ///< rho is frozen after this many refactorisations
   int power_iterations = 30;   ///< for L = lambda_max(W) of the spectral rho0
 };
