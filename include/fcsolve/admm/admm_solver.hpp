@@ -58,8 +58,8 @@ class Admm {
   const Settings& settings() const { return settings_; }
   const SolverInfo& info() const { return info_; }
 
-  /// rho of the last solve's end (after adaptation), and how many times
-  /// W_s + rho I was factorised by it.
+  /// rho at the end of the last solve (after adaptation), and how many
+  /// factorisations of W_s + rho I that solve used (1: rho never changed).
   double rho() const { return rho_; }
   int factorizations() const { return factorizations_; }
 
@@ -109,6 +109,7 @@ class Admm {
     info_.history.clear();
     info_.message.clear();
     if (rho_ != rho0_) factorization_ok_ = refactorize(rho0_);
+    factorizations_ = 1;  // the cap counts this solve's factorisations, the one in use included
     z_ = r;
     r_ = r;
     xi_.setZero();
