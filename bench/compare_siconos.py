@@ -66,6 +66,8 @@ PAIRS = {
                     ("tresca", [], "tresca"), ("pana", [], "pfp")],
     # VI projection family: fixed point and extragradient, self-adaptive step
     "vi": [("vi-fp", [], "vi-fp"), ("vi-eg", [], "vi-eg")],
+    # ADMM with De Saxce's shift against Siconos' ADMM
+    "admm": [("admm", [], "admm")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }

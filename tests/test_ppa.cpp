@@ -38,19 +38,8 @@ static_assert(satisfies_solver_contract_v<PpaNsgs<Coulomb2D>, LocalProblemView>)
 static_assert(satisfies_solver_contract_v<PpaNewton<Frictionless>, LocalProblemView>);
 
 using fcsolve_test::make_local;
+using fcsolve_test::solve_checked;
 
-/// Solves p from r = 0 (or r0) and checks what every solve must: the
-/// reported error is the independent one, u = W r + q, r finite.
-template <class Solver>
-Vector solve_with(Solver& solver, const LocalProblem& p, Vector r0 = Vector()) {
-  solver.compute(p);
-  Vector r = r0.size() ? r0 : Vector(Vector::Zero(p.size())), u(p.size());
-  solver.solve(r, u);
-  CHECK(r.allFinite());
-  CHECK(solver.info().error == Approx(local_error(p, r)).epsilon(1e-6).margin(1e-15));
-  CHECK((u - (SparseMatrix(p.W) * r + p.q)).norm() <= 1e-12 * (1 + u.norm()));
-  return r;
-}
 
 /// Random well-posed problem: W = H^T H / n with H of n = m + 5 rows.
 LocalProblem random_problem(int d, Index nc, double mu, unsigned seed) {
@@ -99,12 +88,12 @@ TEST_CASE("ppa: closed-form one-contact solutions (3D), Newton and NSGS inner", 
     const LocalProblem p = make_local(3, W, q, Vector::Constant(1, 0.5));
     PpaNewton<Coulomb3D> newton;
     newton.settings().tol = 1e-12;
-    const Vector r = solve_with(newton, p);
+    const Vector r = solve_checked(newton, p);
     CHECK(newton.info().converged());
     CHECK(local_error(p, r) <= 1e-12);
     PpaNsgs<Coulomb3D> nsgs;
     nsgs.settings().tol = 1e-12;
-    CHECK((solve_with(nsgs, p) - r).norm() <= 1e-10);
+    CHECK((solve_checked(nsgs, p) - r).norm() <= 1e-10);
     CHECK(nsgs.info().converged());
     return r;
   };
@@ -124,7 +113,7 @@ TEST_CASE("ppa: 2D and frictionless cones through the same template", "[ppa][clo
         make_local(2, DenseMatrix::Identity(2, 2), Eigen::Vector2d(-1, 2), Vector::Constant(1, 0.5));
     PpaNewton<Coulomb2D> ppa;
     ppa.settings().tol = 1e-12;
-    CHECK((solve_with(ppa, p) - Eigen::Vector2d(1, -0.5)).norm() <= 1e-11);
+    CHECK((solve_checked(ppa, p) - Eigen::Vector2d(1, -0.5)).norm() <= 1e-11);
     CHECK(ppa.info().converged());
   }
   SECTION("frictionless LCP: W = [[2, 1], [1, 2]], q = (-3, 1) -> r = (1.5, 0)") {
@@ -133,19 +122,19 @@ TEST_CASE("ppa: 2D and frictionless cones through the same template", "[ppa][clo
     const LocalProblem p = make_local(1, W, Eigen::Vector2d(-3, 1), Vector::Zero(2));
     PpaNewton<Frictionless> ppa;
     ppa.settings().tol = 1e-12;
-    CHECK((solve_with(ppa, p) - Eigen::Vector2d(1.5, 0)).norm() <= 1e-11);
+    CHECK((solve_checked(ppa, p) - Eigen::Vector2d(1.5, 0)).norm() <= 1e-11);
     CHECK(ppa.info().converged());
     PpaNsgs<Frictionless> nsgs;
     nsgs.settings().tol = 1e-12;
-    CHECK((solve_with(nsgs, p) - Eigen::Vector2d(1.5, 0)).norm() <= 1e-11);
+    CHECK((solve_checked(nsgs, p) - Eigen::Vector2d(1.5, 0)).norm() <= 1e-11);
   }
   SECTION("random coupled 2D and frictionless problems, sparse storage") {
     const LocalProblem p2 = random_problem(2, 30, 0.4, 1), p1 = random_problem(1, 40, 0.0, 2);
     ProximalPoint<Coulomb2D> ppa2;
-    CHECK(local_error(p2, solve_with(ppa2, p2)) <= 1e-8);
+    CHECK(local_error(p2, solve_checked(ppa2, p2)) <= 1e-8);
     CHECK(ppa2.info().converged());
     ProximalPoint<Frictionless> ppa1;
-    const Vector r = solve_with(ppa1, p1);
+    const Vector r = solve_checked(ppa1, p1);
     CHECK(ppa1.info().converged());
     CHECK(local_error(p1, r) <= 1e-8);
     const Vector u = SparseMatrix(p1.W) * r + p1.q;
@@ -162,7 +151,7 @@ TEST_CASE("ppa: every FCLIB local problem to 1e-8 (independent error)", "[ppa][f
     const LocalProblem p = fclib::read_local(f);
     ProximalPoint<Coulomb3D> ppa;
     ppa.settings().max_time = 60;  // a generous guard; each takes well under a second
-    const Vector r = solve_with(ppa, p);
+    const Vector r = solve_checked(ppa, p);
     CHECK(ppa.info().status == Status::Converged);
     CHECK(local_error(p, r) <= 1e-8);
   }
@@ -176,7 +165,7 @@ TEST_CASE("ppa: a rank-deficient W (one box on eight contacts)", "[ppa][rank-def
     INFO("mu = " << mu);
     const LocalProblem q = box_on_eight_contacts(mu);
     ProximalPoint<Coulomb3D> ppa;
-    const Vector r = solve_with(ppa, q);
+    const Vector r = solve_checked(ppa, q);
     CHECK(ppa.info().converged());
     CHECK(local_error(q, r) <= 1e-8);
     // the box is held: the total normal reaction stops its fall
@@ -184,7 +173,7 @@ TEST_CASE("ppa: a rank-deficient W (one box on eight contacts)", "[ppa][rank-def
     for (Index a = 0; a < q.num_contacts(); ++a) total_normal += r[3 * a];
     CHECK(total_normal > 0);
     ProximalPoint<Coulomb3D, Nsgs<Coulomb3D, BlockSparseStorage<3>>> nsgs;
-    CHECK(local_error(q, solve_with(nsgs, q)) <= 1e-8);
+    CHECK(local_error(q, solve_checked(nsgs, q)) <= 1e-8);
     CHECK(nsgs.info().converged());
   }
 }
@@ -212,7 +201,7 @@ TEST_CASE("ppa: a settled sphere pile (rank-deficient W)", "[ppa][rank-deficient
   CHECK(lu.rank() < p.size());  // closed loops of contacts between spheres
   ProximalPoint<Coulomb3D> ppa;
   ppa.settings().max_time = 60;  // a guard; it takes well under a second
-  const Vector r = solve_with(ppa, p);
+  const Vector r = solve_checked(ppa, p);
   CHECK(ppa.info().converged());
   CHECK(local_error(p, r) <= 1e-8);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <fcsolve/io/fclib.hpp>
+#include <fcsolve/problem/error.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -104,6 +105,24 @@ void check_contract_errors(Solver& solver, const fcsolve::LocalProblem& p, fcsol
   r[0] = std::nan("");
   CHECK_THROWS_AS(solver.solve(r, u), fcsolve::InvalidProblem);
   r.setZero();
+}
+
+/// Solves p from r = 0 (or r0) with a compute()/solve() solver and checks
+/// what every solve must: the reported error is the independent one,
+/// u = W r + q, r finite. Returns r. (The margin: near 1e-9 the two errors,
+/// from u = W r + q summed in different orders, differ by rounding, 1e-15.)
+template <class Solver>
+fcsolve::Vector solve_checked(Solver& solver, const fcsolve::LocalProblem& p,
+                              fcsolve::Vector r0 = fcsolve::Vector()) {
+  using fcsolve::Vector;
+  solver.compute(p);
+  Vector r = r0.size() ? r0 : Vector(Vector::Zero(p.size())), u(p.size());
+  solver.solve(r, u);
+  CHECK(r.allFinite());
+  CHECK(solver.info().error ==
+        Approx(fcsolve::local_error(p, r)).epsilon(1e-6).margin(1e-13));
+  CHECK((u - (fcsolve::SparseMatrix(p.W) * r + p.q)).norm() <= 1e-12 * (1 + u.norm()));
+  return r;
 }
 
 }  // namespace fcsolve_test

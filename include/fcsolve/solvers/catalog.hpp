@@ -4,6 +4,7 @@
 // programs that need run-time selection (CLI, Python, benchmarks) include it.
 #pragma once
 
+#include <fcsolve/solvers/admm_entries.hpp>
 #include <fcsolve/solvers/auto_entries.hpp>
 #include <fcsolve/solvers/fixed_point_entries.hpp>
 #include <fcsolve/solvers/nsgs_entries.hpp>
@@ -26,6 +27,7 @@ inline const std::vector<SolverEntry>& entries() {
     add_ipm_solvers(v);
     add_ppa_solvers(v);
     add_fixed_point_solvers(v);
+    add_admm_solvers(v);
     // `auto` runs the entries above by name (solvers/auto_entries.hpp).
     add_auto_solvers(v);
     return v;
