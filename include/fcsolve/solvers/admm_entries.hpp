@@ -48,10 +48,8 @@ inline std::vector<SettingSpec> admm_settings() {
 }  // namespace detail
 
 inline void add_admm_solvers(std::vector<SolverEntry>& v) {
-  SolverEntry e;
-  e.name = "admm";
-  e.family = "admm";
-  e.summary = "ADMM with De Saxce's shift, W + rho I factorised per rho (Acary et al. 2018)";
+  SolverEntry e("admm", "admm",
+                "ADMM with De Saxce's shift, W + rho I factorised per rho (Acary et al. 2018)");
   e.settings = detail::admm_settings();
   e.default_max_iter = 20000;
   e.solve_local = [](const LocalProblemView& p, const SolveRequest& req) {

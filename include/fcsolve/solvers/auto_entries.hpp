@@ -446,11 +446,9 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
 }  // namespace auto_detail
 
 inline void add_auto_solvers(std::vector<SolverEntry>& v) {
-  SolverEntry e;
-  e.name = "auto";
-  e.family = "auto";
-  e.summary = "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/proximal point/Newton fallback; "
-              "each stage from the best iterate (FC/I with a dense W: nsn-ac-global, then nipm)";
+  SolverEntry e("auto", "auto",
+                "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/proximal point/Newton fallback; "
+                "each stage from the best iterate (FC/I with a dense W: nsn-ac-global, then nipm)");
   e.default_max_iter = 1000000;
   e.solve_local = auto_detail::solve_local;
   e.solve_global = auto_detail::solve_global;

@@ -47,10 +47,7 @@ LocalSolveFunction splitting_solver() {
 }
 
 inline SolverEntry splitting_entry(std::string name, std::string summary, LocalSolveFunction solve) {
-  SolverEntry e;
-  e.name = std::move(name);
-  e.family = "fixed-point";
-  e.summary = std::move(summary);
+  SolverEntry e(std::move(name), "fixed-point", std::move(summary));
   e.settings = splitting_specs();
   e.default_max_iter = SplittingSettings().max_iter;
   e.solve_local = std::move(solve);

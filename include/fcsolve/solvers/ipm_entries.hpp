@@ -180,10 +180,7 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
 }
 
 inline SolverEntry ipm_entry(std::string name, std::string summary, IpmKind kind) {
-  SolverEntry e;
-  e.name = std::move(name);
-  e.family = "ipm";
-  e.summary = std::move(summary);
+  SolverEntry e(std::move(name), "ipm", std::move(summary));
   e.settings = ipm_settings(kind);
   e.default_max_iter = default_settings(kind).max_iter;
   e.solve_local = ipm_local(kind);

@@ -114,10 +114,7 @@ inline std::vector<SettingSpec> newton_settings_specs(bool hybrid) {
 
 /// An entry of the family, its solve functions still to set.
 inline SolverEntry newton_entry(std::string name, std::string summary, bool hybrid = false) {
-  SolverEntry e;
-  e.name = std::move(name);
-  e.family = "newton";
-  e.summary = std::move(summary);
+  SolverEntry e(std::move(name), "newton", std::move(summary));
   e.settings = newton_settings_specs(hybrid);
   e.default_max_iter = hybrid ? 5000 : 1000;
   return e;

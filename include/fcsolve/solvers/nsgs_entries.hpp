@@ -102,10 +102,7 @@ SolveOutcome solve_with(const LocalProblemView& view, const SolveRequest& req,
 template <template <class> class Local, class Configure>
 SolverEntry make_entry(std::string name, std::string summary, std::vector<SettingSpec> local,
                        Configure configure, double omega = kDefaults.omega) {
-  SolverEntry e;
-  e.name = std::move(name);
-  e.family = "nsgs";
-  e.summary = std::move(summary);
+  SolverEntry e(std::move(name), "nsgs", std::move(summary));
   e.settings = common_settings(omega);
   e.settings.insert(e.settings.end(), local.begin(), local.end());
   e.default_max_iter = 1000000;

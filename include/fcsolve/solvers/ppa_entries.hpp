@@ -72,10 +72,7 @@ template <class Cone, class Storage>
 using NsgsInner = Nsgs<Cone, Storage>;
 
 inline SolverEntry entry(std::string name, std::string summary, LocalSolveFunction solve) {
-  SolverEntry e;
-  e.name = std::move(name);
-  e.family = "ppa";
-  e.summary = std::move(summary);
+  SolverEntry e(std::move(name), "ppa", std::move(summary));
   e.settings = settings_specs();
   e.default_max_iter = kDefaults.max_iter;
   e.solve_local = std::move(solve);

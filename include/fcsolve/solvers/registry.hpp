@@ -73,6 +73,11 @@ using GlobalSolveFunction =
     std::function<SolveOutcome(const GlobalProblemView&, const SolveRequest&)>;
 
 struct SolverEntry {
+  SolverEntry() = default;
+  /// The entry's identity; its family sets settings, budget and solve functions.
+  SolverEntry(std::string name_, std::string family_, std::string summary_)
+      : name(std::move(name_)), family(std::move(family_)), summary(std::move(summary_)) {}
+
   std::string name;     ///< CLI name, e.g. "nsgs-ac"
   std::string family;   ///< "nsgs", "newton", "ipm", ...
   std::string summary;  ///< one line for `fcsolve solvers`

@@ -58,10 +58,7 @@ inline std::vector<SettingSpec> projected_settings(StepRule step_rule) {
 inline SolverEntry projected_entry(std::string name, std::string summary,
                                    ProjectionVariant variant, std::string family = "vi",
                                    StepRule step_rule = ProjectedFixedPointSettings().step) {
-  SolverEntry e;
-  e.name = std::move(name);
-  e.family = std::move(family);
-  e.summary = std::move(summary);
+  SolverEntry e(std::move(name), std::move(family), std::move(summary));
   e.settings = projected_settings(step_rule);
   e.default_max_iter = 20000;
   e.solve_local = projected_solver(variant);
