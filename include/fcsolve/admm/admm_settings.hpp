@@ -15,7 +15,6 @@ enum class AdmmRhoInit {
 inline constexpr EnumName<AdmmRhoInit> kAdmmRhoInitNames[] = {
     {AdmmRhoInit::Given, "given"}, {AdmmRhoInit::Spectral, "spectral"}};
 constexpr const auto& enum_names(AdmmRhoInit) { return kAdmmRhoInitNames; }
-inline const char* to_string(AdmmRhoInit r) { return enum_to_string(r); }
 
 /// How rho changes during the solve (every `adapt_interval` iterations; each
 /// change refactorises W + rho I, at most `max_refactorizations` times).
@@ -29,7 +28,6 @@ inline constexpr EnumName<AdmmRhoStrategy> kAdmmRhoStrategyNames[] = {
     {AdmmRhoStrategy::Osqp, "osqp"},
     {AdmmRhoStrategy::Constant, "constant"}};
 constexpr const auto& enum_names(AdmmRhoStrategy) { return kAdmmRhoStrategyNames; }
-inline const char* to_string(AdmmRhoStrategy r) { return enum_to_string(r); }
 
 struct AdmmSettings : SolverSettings {
   /// Given (rho0 = 1, Siconos' default) measured better than the spectral

@@ -5,7 +5,9 @@
 //   constexpr const auto& enum_names(E) { return kENames; }   // found by ADL
 //
 // and gets enum_to_string(e), parse_enum<E>(text) and enum_choices<E>()
-// (the names in table order, as the catalogue lists them).
+// (the names in table order, as the catalogue lists them). An enum of
+// namespace fcsolve also gets to_string(e); one of a nested namespace
+// declares its own `to_string(E e) { return enum_to_string(e); }` there.
 #pragma once
 
 #include <fcsolve/core/exceptions.hpp>
@@ -26,6 +28,12 @@ const char* enum_to_string(E e) {
   for (const auto& n : enum_names(E{}))
     if (n.value == e) return n.name;
   return "?";
+}
+
+/// to_string for every enum of namespace fcsolve that has a name table.
+template <class E, class = decltype(enum_names(E{}))>
+const char* to_string(E e) {
+  return enum_to_string(e);
 }
 
 template <class E>

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
+#include <fcsolve/core/enum_names.hpp>
 #include <fcsolve/problem/error.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -30,15 +31,12 @@ namespace local {
 /// Which branch of Coulomb's law a one-contact solution is on.
 enum class ContactCase { Unknown, TakeOff, Stick, Slide };
 
-inline const char* to_string(ContactCase c) {
-  switch (c) {
-    case ContactCase::TakeOff: return "take-off";
-    case ContactCase::Stick: return "stick";
-    case ContactCase::Slide: return "slide";
-    case ContactCase::Unknown: break;
-  }
-  return "unknown";
-}
+inline constexpr EnumName<ContactCase> kContactCaseNames[] = {{ContactCase::Unknown, "unknown"},
+                                                             {ContactCase::TakeOff, "take-off"},
+                                                             {ContactCase::Stick, "stick"},
+                                                             {ContactCase::Slide, "slide"}};
+constexpr const auto& enum_names(ContactCase) { return kContactCaseNames; }
+inline const char* to_string(ContactCase c) { return enum_to_string(c); }
 
 /// What a local solve did. `converged` means the local stopping test held
 /// (the solver's own tolerance), not that the NSGS iteration converged.

@@ -20,7 +20,6 @@ inline constexpr EnumName<LineSearch> kLineSearchNames[] = {
     {LineSearch::Armijo, "armijo"},
     {LineSearch::None, "none"}};
 constexpr const auto& enum_names(LineSearch) { return kLineSearchNames; }
-inline const char* to_string(LineSearch l) { return enum_to_string(l); }
 
 /// How the per-contact rho = (rho_N, rho_T, rho_T) of the formulation is set.
 enum class RhoStrategy {
@@ -35,7 +34,6 @@ inline constexpr EnumName<RhoStrategy> kRhoStrategyNames[] = {
     {RhoStrategy::Constant, "constant"},
     {RhoStrategy::Adaptive, "adaptive"}};
 constexpr const auto& enum_names(RhoStrategy) { return kRhoStrategyNames; }
-inline const char* to_string(RhoStrategy r) { return enum_to_string(r); }
 
 struct NewtonSettings : SolverSettings {
   LineSearch line_search = LineSearch::GoldsteinPrice;

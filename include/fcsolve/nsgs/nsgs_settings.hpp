@@ -25,7 +25,6 @@ inline constexpr EnumName<ContactOrdering> kContactOrderingNames[] = {
     {ContactOrdering::ShuffledEachSweep, "reshuffle"},
     {ContactOrdering::Coloured, "coloured"}};
 constexpr const auto& enum_names(ContactOrdering) { return kContactOrderingNames; }
-inline const char* to_string(ContactOrdering o) { return enum_to_string(o); }
 
 /// NSGS knobs; `LocalSettings` are the local solver's (e.g.
 /// local::Projection<Cone>::Settings). Common ones (tol, max_iter, max_time,

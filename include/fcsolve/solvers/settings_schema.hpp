@@ -22,15 +22,12 @@ namespace registry {
 
 enum class SettingType { Real, Integer, Boolean, Choice };
 
-inline const char* to_string(SettingType t) {
-  switch (t) {
-    case SettingType::Real: return "real";
-    case SettingType::Integer: return "integer";
-    case SettingType::Boolean: return "boolean";
-    case SettingType::Choice: return "choice";
-  }
-  return "?";
-}
+inline constexpr EnumName<SettingType> kSettingTypeNames[] = {{SettingType::Real, "real"},
+                                                             {SettingType::Integer, "integer"},
+                                                             {SettingType::Boolean, "boolean"},
+                                                             {SettingType::Choice, "choice"}};
+constexpr const auto& enum_names(SettingType) { return kSettingTypeNames; }
+inline const char* to_string(SettingType t) { return enum_to_string(t); }
 
 using SettingValue = std::variant<bool, long long, double, std::string>;
 

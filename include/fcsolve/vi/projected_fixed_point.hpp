@@ -57,7 +57,6 @@ enum class StepRule { SelfAdaptive, Fixed };
 inline constexpr EnumName<StepRule> kStepRuleNames[] = {{StepRule::SelfAdaptive, "self-adaptive"},
                                                        {StepRule::Fixed, "fixed"}};
 constexpr const auto& enum_names(StepRule) { return kStepRuleNames; }
-inline const char* to_string(StepRule r) { return enum_to_string(r); }
 
 struct ProjectedFixedPointSettings : SolverSettings {
   ProjectionVariant variant = ProjectionVariant::ExtraGradient;
@@ -87,9 +86,7 @@ class ProjectedFixedPoint {
   /// step. The viewed data must outlive *this.
   ProjectedFixedPoint& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    validate_dimension(p.d, d);
-    validate(p);
-    problem_.emplace(p);
+    problem_.emplace(validated(p, d));
     W_.compute(p.W);
     const Index m = p.size();
     F_.resize(m);
