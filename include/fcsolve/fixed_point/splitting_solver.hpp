@@ -78,9 +78,7 @@ class SplittingSolver {
   /// compute()'s common part: validates p for this cone, keeps its view
   /// and the error evaluator of the Coulomb problem.
   void prepare(const LocalProblemView& p) {
-    validate_dimension(p.d, d);
-    validate(p);
-    problem_.emplace(p);
+    problem_.emplace(validated(p, d));
     error_.emplace(p);
     best_r_.resize(p.size());
     info_ = SolverInfo();

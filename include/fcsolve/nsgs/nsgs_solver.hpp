@@ -105,9 +105,7 @@ class Nsgs {
   /// Throws InvalidProblem on inconsistent data.
   Nsgs& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    validate_dimension(p.d, d);
-    validate(p);
-    problem_.emplace(p);
+    problem_.emplace(validated(p, d));
     storage_.compute(p.W);
     const Index nc = p.num_contacts(), m = p.size();
     data_.resize(static_cast<std::size_t>(nc));

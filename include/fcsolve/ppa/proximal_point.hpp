@@ -67,9 +67,7 @@ class ProximalPoint {
   /// must outlive the solver.
   ProximalPoint& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    validate_dimension(p.d, d);
-    validate(p);
-    problem_.emplace(p);
+    problem_.emplace(validated(p, d));
     error_.emplace(p);
     proximal_.compute(p);
     const Index m = p.size();

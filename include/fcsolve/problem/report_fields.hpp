@@ -39,22 +39,33 @@ inline Fields summary_fields(const ProblemSummary& s, const std::string& title) 
   return f;
 }
 
-/// The FC/II error in its scalings, full precision in every form.
+namespace detail {
+/// The error, the report's own parts, then the worst contact; full
+/// precision in every form.
+template <class Report>
+Fields error_fields(const Report& e, const Fields& parts, unsigned worst_contact_shown) {
+  Fields f = {Field::real("error", e.error, "%.17g")};
+  f.insert(f.end(), parts.begin(), parts.end());
+  f.push_back(Field::real("max_contact", e.max_contact, "%.17g"));
+  f.push_back(Field::integer("worst_contact", e.worst_contact, worst_contact_shown));
+  return f;
+}
+}  // namespace detail
+
+/// The FC/II error in its scalings.
 inline Fields error_fields(const LocalErrorReport& e) {
-  return {Field::real("error", e.error, "%.17g"),
-          Field::real("siconos_error", e.siconos_error, "%.17g"),
-          Field::real("absolute", e.absolute, "%.17g"),
-          Field::real("max_contact", e.max_contact, "%.17g"),
-          Field::integer("worst_contact", e.worst_contact, ShownStructured)};
+  return detail::error_fields(e,
+                              {Field::real("siconos_error", e.siconos_error, "%.17g"),
+                               Field::real("absolute", e.absolute, "%.17g")},
+                              ShownStructured);
 }
 
-/// The FC/I error and its two parts, full precision in every form.
+/// The FC/I error and its two parts.
 inline Fields error_fields(const GlobalErrorReport& e) {
-  return {Field::real("error", e.error, "%.17g"),
-          Field::real("complementarity", e.complementarity, "%.17g"),
-          Field::real("equilibrium", e.equilibrium, "%.17g"),
-          Field::real("max_contact", e.max_contact, "%.17g"),
-          Field::integer("worst_contact", e.worst_contact, ShownInPython)};
+  return detail::error_fields(e,
+                              {Field::real("complementarity", e.complementarity, "%.17g"),
+                               Field::real("equilibrium", e.equilibrium, "%.17g")},
+                              ShownInPython);
 }
 
 }  // namespace fcsolve

@@ -28,32 +28,32 @@ inline Index count_nonzero_values(const SparseMap& A) {
   for (Index e = 0; e < A.nonZeros(); ++e) k += A.valuePtr()[e] != 0.0;
   return k;
 }
-inline void fill_mu_range(const VectorMap& mu, ProblemSummary& s) {
-  s.mu_min = mu.size() ? mu.minCoeff() : 0.0;
-  s.mu_max = mu.size() ? mu.maxCoeff() : 0.0;
+/// What both kinds report: sizes, the range of mu, the asymmetry of the
+/// matrix the solvers factorise or sweep (W for FC/II, M for FC/I).
+template <class View>
+ProblemSummary common_summary(const char* kind, const View& p, const SparseMap& A) {
+  ProblemSummary s;
+  s.kind = kind;
+  s.d = p.d;
+  s.nc = p.num_contacts();
+  s.m = p.size();
+  s.mu_min = p.mu.size() ? p.mu.minCoeff() : 0.0;
+  s.mu_max = p.mu.size() ? p.mu.maxCoeff() : 0.0;
+  s.asymmetry = relative_asymmetry(A);
+  return s;
 }
 }  // namespace detail
 
 inline ProblemSummary summarize(const LocalProblemView& p) {
-  ProblemSummary s;
-  s.kind = "local";
-  s.d = p.d;
-  s.nc = p.num_contacts();
-  s.m = p.size();
+  ProblemSummary s = detail::common_summary("local", p, p.W);
   s.nnz_W = p.W.nonZeros();
   s.nonzeros_W = detail::count_nonzero_values(p.W);
-  detail::fill_mu_range(p.mu, s);
-  s.asymmetry = relative_asymmetry(p.W);
   return s;
 }
 
 inline ProblemSummary summarize(const GlobalProblemView& p) {
-  ProblemSummary s;
-  s.kind = "global";
-  s.d = p.d;
-  s.nc = p.num_contacts();
+  ProblemSummary s = detail::common_summary("global", p, p.M);
   s.n = p.num_dofs();
-  s.m = p.size();
   s.nnz_M = p.M.nonZeros();
   s.nnz_H = p.H.nonZeros();
   s.nonzeros_M = detail::count_nonzero_values(p.M);
@@ -63,8 +63,6 @@ inline ProblemSummary summarize(const GlobalProblemView& p) {
     s.nnz_G = p.G->nonZeros();
     s.nonzeros_G = detail::count_nonzero_values(*p.G);
   }
-  detail::fill_mu_range(p.mu, s);
-  s.asymmetry = relative_asymmetry(p.M);
   return s;
 }
 

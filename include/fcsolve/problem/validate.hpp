@@ -126,6 +126,14 @@ inline void validate_dimension(int problem_d, int solver_d) {
                                          ", the problem has d = " + std::to_string(problem_d));
 }
 
+/// p, checked (validate) and of the dimension a solver compiled for
+/// solver_d solves: what a solver's compute() stores.
+inline const LocalProblemView& validated(const LocalProblemView& p, int solver_d) {
+  validate_dimension(p.d, solver_d);
+  validate(p);
+  return p;
+}
+
 inline void validate(const LocalProblem& p) { validate(LocalProblemView(p)); }
 inline void validate(const GlobalProblem& p) { validate(GlobalProblemView(p)); }
 
