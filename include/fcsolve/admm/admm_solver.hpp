@@ -67,11 +67,9 @@ class Admm {
   /// estimates rho0 and factorises W_s + rho0 I. p must outlive *this.
   Admm& compute(const LocalProblemView& p) {
     Stopwatch clock;
-    validate_dimension(p.d, d);
-    validate(p);
     if (!(settings_.relaxation > 0 && settings_.relaxation < 2))
       throw UsageError("Admm: relaxation must lie in (0, 2)");
-    problem_.emplace(p);
+    problem_.emplace(validated(p, d));
     W_.compute(p.W);
     const Index m = p.size();
     const SparseMatrix W(p.W), Wt(p.W.transpose());
@@ -134,61 +132,29 @@ class Admm {
  private:
   Index size() const { return problem_ ? problem_->size() : 0; }
 
+  /// The state of Nesterov's extrapolation with restart (Goldstein et al.
+  /// 2014, alg. 8): the step parameter and the last combined residual.
+  struct Momentum {
+    double a = 1;
+    double combined_prev = std::numeric_limits<double>::infinity();
+  };
+
   void iterate(const Stopwatch& clock) {
-    const double alpha = settings_.relaxation;
-    double a = 1, combined_prev = std::numeric_limits<double>::infinity();
-    zh_ = z_;
-    xih_ = xi_;
-    z_prev_ = z_;
-    xi_prev_ = xi_;
+    Momentum momentum;
+    restart_extrapolation(momentum);
     for (int k = 1; k <= settings_.max_iter; ++k) {
       info_.iterations = k;
       FCSOLVE_NO_MALLOC_BEGIN();
-      // r-update: right-hand side, then the factorised solve
-      b_ = rho_ * (zh_ - xih_) - problem_->q - s_;
-      if (Wa_.nonZeros() > 0) b_.noalias() -= Wa_ * r_;
-      if constexpr (Factorization::solve_allocates) FCSOLVE_NO_MALLOC_END();
-      factorization_.solve(b_, r_);
-      if constexpr (Factorization::solve_allocates) FCSOLVE_NO_MALLOC_BEGIN();
-      // over-relaxation, projection onto K, dual step
-      z_prev_ = z_;
-      xi_prev_ = xi_;
+      update_r();
       double primal_sq = 0, dual_sq = 0;
-      const LocalProblemView& p = *problem_;
-      for (Index c = 0; c < p.num_contacts(); ++c) {
-        const Vec rr = alpha * r_.template segment<d>(c * d) + (1 - alpha) * zh_.template segment<d>(c * d);
-        const Vec v = rr + xih_.template segment<d>(c * d);
-        const Vec zc = Cone::project(v, p.mu[c]);
-        z_.template segment<d>(c * d) = zc;
-        xi_.template segment<d>(c * d) = v - zc;
-        primal_sq += (r_.template segment<d>(c * d) - zc).squaredNorm();
-        dual_sq += (zc - zh_.template segment<d>(c * d)).squaredNorm();
-      }
+      project_and_update_dual(primal_sq, dual_sq);
       const double error = velocity_and_error();
       if (error < best_error_) {
         best_error_ = error;
         best_r_ = r_;
         best_u_ = u_;
       }
-      // Goldstein et al. 2014, alg. 8: extrapolate while the combined residual
-      // c = ||xi - xih||^2 + ||z - zh||^2 falls, restart from (z_{k-1}, xi_{k-1}) when not
-      const double combined = (xi_ - xih_).squaredNorm() + dual_sq;
-      if (settings_.acceleration && combined < settings_.restart_factor * combined_prev) {
-        const double a_next = 0.5 * (1 + std::sqrt(1 + 4 * a * a));
-        const double beta = (a - 1) / a_next;
-        zh_ = z_ + beta * (z_ - z_prev_);
-        xih_ = xi_ + beta * (xi_ - xi_prev_);
-        a = a_next;
-        combined_prev = combined;
-      } else if (settings_.acceleration) {
-        a = 1;
-        zh_ = z_prev_;
-        xih_ = xi_prev_;
-        combined_prev /= settings_.restart_factor;
-      } else {
-        zh_ = z_;
-        xih_ = xi_;
-      }
+      extrapolate(momentum, dual_sq);
       FCSOLVE_NO_MALLOC_END();
       if (!std::isfinite(error)) {
         info_.status = Status::NumericalError;
@@ -210,16 +176,70 @@ class Admm {
           info_.message = "W_s + rho I is not positive definite";
           break;
         }
-        // restart the extrapolation from the current point: the old
-        // momentum was built with another rho
-        a = 1;
-        combined_prev = std::numeric_limits<double>::infinity();
-        zh_ = z_;
-        xih_ = xi_;
-        z_prev_ = z_;
-        xi_prev_ = xi_;
+        // the old momentum was built with another rho
+        restart_extrapolation(momentum);
       }
     }
+  }
+
+  /// r-update: (W_s + rho I) r = rho (zh - xih) - q - s - W_a r. Called with
+  /// allocation forbidden; a factorisation whose solve allocates is let.
+  void update_r() {
+    b_ = rho_ * (zh_ - xih_) - problem_->q - s_;
+    if (Wa_.nonZeros() > 0) b_.noalias() -= Wa_ * r_;
+    if constexpr (Factorization::solve_allocates) FCSOLVE_NO_MALLOC_END();
+    factorization_.solve(b_, r_);
+    if constexpr (Factorization::solve_allocates) FCSOLVE_NO_MALLOC_BEGIN();
+  }
+
+  /// Over-relaxation, projection onto K, dual step; the squared primal
+  /// (r - z) and dual (z - zh) residuals.
+  void project_and_update_dual(double& primal_sq, double& dual_sq) {
+    const double alpha = settings_.relaxation;
+    z_prev_ = z_;
+    xi_prev_ = xi_;
+    const LocalProblemView& p = *problem_;
+    for (Index c = 0; c < p.num_contacts(); ++c) {
+      const Vec rr = alpha * r_.template segment<d>(c * d) + (1 - alpha) * zh_.template segment<d>(c * d);
+      const Vec v = rr + xih_.template segment<d>(c * d);
+      const Vec zc = Cone::project(v, p.mu[c]);
+      z_.template segment<d>(c * d) = zc;
+      xi_.template segment<d>(c * d) = v - zc;
+      primal_sq += (r_.template segment<d>(c * d) - zc).squaredNorm();
+      dual_sq += (zc - zh_.template segment<d>(c * d)).squaredNorm();
+    }
+  }
+
+  /// Goldstein et al. 2014, alg. 8: extrapolate while the combined residual
+  /// c = ||xi - xih||^2 + ||z - zh||^2 falls, restart from (z_{k-1}, xi_{k-1})
+  /// when not; without acceleration the next point is (z, xi).
+  void extrapolate(Momentum& m, double dual_sq) {
+    const double combined = (xi_ - xih_).squaredNorm() + dual_sq;
+    if (settings_.acceleration && combined < settings_.restart_factor * m.combined_prev) {
+      const double a_next = 0.5 * (1 + std::sqrt(1 + 4 * m.a * m.a));
+      const double beta = (m.a - 1) / a_next;
+      zh_ = z_ + beta * (z_ - z_prev_);
+      xih_ = xi_ + beta * (xi_ - xi_prev_);
+      m.a = a_next;
+      m.combined_prev = combined;
+    } else if (settings_.acceleration) {
+      m.a = 1;
+      zh_ = z_prev_;
+      xih_ = xi_prev_;
+      m.combined_prev /= settings_.restart_factor;
+    } else {
+      zh_ = z_;
+      xih_ = xi_;
+    }
+  }
+
+  /// Extrapolation restarted from the current point.
+  void restart_extrapolation(Momentum& m) {
+    m = Momentum();
+    zh_ = z_;
+    xih_ = xi_;
+    z_prev_ = z_;
+    xi_prev_ = xi_;
   }
 
   /// u_ = W r + q, s_ = g(u_); returns the FCLIB error of r_.
