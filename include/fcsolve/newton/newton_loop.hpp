@@ -81,6 +81,7 @@ class NewtonLoop {
     counters_ = NewtonCounters();
     recent_next_ = 0;
     double kappa = 1;  // adaptive rho factor
+    double step_seconds = 0;  // the last Newton step's duration
     int rho_retries = 0;
     self.set_rho_factor(kappa);
     self.refresh();
@@ -107,9 +108,13 @@ class NewtonLoop {
       if (!std::isfinite(error)) { info_.status = Status::NumericalError; break; }
       if (error <= settings_.tol) { info_.status = Status::Converged; break; }
       if (info_.iterations >= settings_.max_iter) { info_.status = Status::MaxIterations; break; }
-      if (clock.seconds() > settings_.max_time) { info_.status = Status::TimeLimit; break; }
+      // A step is not started when the last one says it would end past the
+      // budget: a factorisation cannot be interrupted once begun.
+      if (clock.seconds() + step_seconds > settings_.max_time) { info_.status = Status::TimeLimit; break; }
       ++info_.iterations;
+      const double step_start = clock.seconds();
       const bool moved = self.newton_step();
+      step_seconds = clock.seconds() - step_start;
       if (moved) {
         FCSOLVE_NO_MALLOC_BEGIN();
         error = self.error();
