@@ -474,3 +474,43 @@ TEST_CASE("ppa-global through the registry: native FC/I, global-only", "[ppa][gl
   CHECK_THROWS_AS(registry::solve(LocalProblemView(p), e, req), UsageError);
   CHECK_THROWS_AS(registry::solve(LocalProblemView(p), registry::find("nsn-ac-global"), req), UsageError);
 }
+
+TEST_CASE("ppa-global: typed errors, budgets and the best iterate", "[ppa][global][api]") {
+  const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("Box_Stacks-i0035-31-0.hdf5"));
+  ProximalPointGlobal<Coulomb3D> ppa;
+  Vector r = Vector::Zero(g.size()), v(g.num_dofs());
+  CHECK_THROWS_AS(ppa.solve(r, v), UsageError);  // before compute()
+  GlobalProblem bilateral = g;
+  bilateral.G = SparseMatrix(g.num_dofs(), 1);
+  bilateral.G.insert(0, 0) = 1;
+  bilateral.G.makeCompressed();
+  bilateral.b = Vector::Zero(1);
+  CHECK_THROWS_AS(ppa.compute(bilateral), UsageError);
+  ppa.compute(g);
+  Vector short_v(g.num_dofs() - 1);
+  CHECK_THROWS_AS(ppa.solve(r, short_v), InvalidProblem);
+  r[0] = std::nan("");
+  CHECK_THROWS_AS(ppa.solve(r, v), InvalidProblem);
+  r.setZero();
+  SECTION("an iteration budget returns the best iterate with its true error") {
+    ppa.settings().max_iter = 1;
+    ppa.solve(r, v);
+    CHECK(ppa.info().status == Status::MaxIterations);
+    CHECK(ppa.info().error == Approx(independent_global_error(g, r, v)).epsilon(1e-9));
+  }
+  SECTION("bad settings are usage errors") {
+    ppa.settings().alpha_min = 0;
+    CHECK_THROWS_AS(ppa.solve(r, v), UsageError);
+  }
+  SECTION("the callback sees each subproblem's full error and can stop the solve") {
+    int calls = 0;
+    ppa.settings().callback = [&](const IterationInfo& it) {
+      ++calls;
+      CHECK(it.full_error);
+      return true;
+    };
+    ppa.solve(r, v);
+    CHECK(calls == 1);
+    CHECK(ppa.info().status == Status::Stopped);
+  }
+}
