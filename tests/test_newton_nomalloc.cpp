@@ -54,19 +54,37 @@ TEST_CASE("Newton iterations allocate nothing outside the factorisation", "[newt
     Vector v(g.num_dofs());
     CHECK_NOTHROW(nsn.solve(r, v));
     CHECK(nsn.info().converged());
+    // with a contact compliance (ppa-global's subproblem)
+    nsn.set_compliance(nsn.lumped_diagonal_mean());
+    r.setZero();
+    CHECK_NOTHROW(nsn.solve(r, v));
+    CHECK(nsn.info().converged());
   }
 }
 
 TEST_CASE("ppa: the outer updates and the inner Newton iterations allocate nothing",
           "[ppa][nomalloc]") {
-  // the inner solver's compute() (once per subproblem) may allocate; the
-  // outer updates (alpha, shifted q, error, step) and the inner iterations
-  // run between FCSOLVE_NO_MALLOC_BEGIN/END
-  const LocalProblem boxes = fclib::read_local(fcsolve_test::bundled("BoxesStack1-i100000-32.hdf5"));
-  ProximalPoint<Coulomb3D> ppa;
-  ppa.compute(boxes);
-  Vector r = Vector::Zero(boxes.size()), u(boxes.size());
-  CHECK_NOTHROW(ppa.solve(r, u));
-  CHECK(ppa.info().converged());
-  CHECK(ppa.info().iterations > 1);
+  // the inner solver's compute() or set_compliance() (once per subproblem)
+  // may allocate; the outer updates (alpha, shifted q or w, error, step) and
+  // the inner iterations run between FCSOLVE_NO_MALLOC_BEGIN/END
+  auto check = [](auto& ppa, const auto& problem, Vector& r, Vector& second) {
+    ppa.compute(problem);
+    r = Vector::Zero(problem.size());
+    CHECK_NOTHROW(ppa.solve(r, second));
+    CHECK(ppa.info().converged());
+    CHECK(ppa.info().iterations > 1);
+  };
+  Vector r, second;
+  SECTION("reduced form") {
+    const LocalProblem boxes = fclib::read_local(fcsolve_test::bundled("BoxesStack1-i100000-32.hdf5"));
+    ProximalPoint<Coulomb3D> ppa;
+    second.resize(boxes.size());
+    check(ppa, boxes, r, second);
+  }
+  SECTION("global form (ppa-global: w - alpha r_k and a contact compliance)") {
+    const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("Box_Stacks-i0035-31-0.hdf5"));
+    ProximalPointGlobal<Coulomb3D> ppa;
+    second.resize(g.num_dofs());
+    check(ppa, g, r, second);
+  }
 }

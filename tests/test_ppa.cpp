@@ -4,7 +4,9 @@
 // error of problem/error.hpp), rank-deficient scenes (one rigid box on eight
 // contacts: rank W = 6 of 24; a settled sphere pile, `fcsolve generate
 // sphere-pile`'s scene), warm start, budgets, callback, bad input,
-// the regularised subproblem itself and the catalogue entries.
+// the regularised subproblem itself and the catalogue entries; ppa-global
+// (ProximalPointGlobal) on the FC/I files and the global Newton's contact
+// compliance it relies on.
 #include "test_support.hpp"
 
 #include <fcsolve/problem/error.hpp>
@@ -36,6 +38,7 @@ using PpaNsgs = ProximalPoint<Cone, Nsgs<Cone, DenseStorage<Cone::dim>>>;
 static_assert(satisfies_solver_contract_v<ProximalPoint<Coulomb3D>, LocalProblemView>);
 static_assert(satisfies_solver_contract_v<PpaNsgs<Coulomb2D>, LocalProblemView>);
 static_assert(satisfies_solver_contract_v<PpaNewton<Frictionless>, LocalProblemView>);
+static_assert(satisfies_solver_contract_v<ProximalPointGlobal<Coulomb3D>, GlobalProblemView>);
 
 using fcsolve_test::make_local;
 using fcsolve_test::solve_checked;
@@ -328,9 +331,13 @@ TEST_CASE("ppa: Newton's compute() on a subproblem of the same pattern rereads o
 }
 
 TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]") {
-  std::set<std::string> names;
+  std::set<std::string> names, all;
   for (const auto& e : registry::entries())
-    if (e.family == "ppa") names.insert(e.name);
+    if (e.family == "ppa") {
+      all.insert(e.name);
+      if (e.solve_local) names.insert(e.name);
+    }
+  CHECK(all == std::set<std::string>{"ppa", "ppa-nsgs", "ppa-global"});
   CHECK(names == std::set<std::string>{"ppa", "ppa-nsgs"});
   const LocalProblem capsules = fclib::read_local(fcsolve_test::bundled("Capsules-i101-404.hdf5"));
   const LocalProblem p2 = random_problem(2, 20, 0.4, 3), p1 = random_problem(1, 20, 0.0, 4);
@@ -356,4 +363,154 @@ TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]"
   CHECK(out.info.converged());  // FC/I by the registry's reduction
   registry::SolveRequest req = registry::make_request(e);
   CHECK_THROWS_AS(req.settings.set_text("sigma", "-1"), UsageError);
+}
+
+namespace {
+
+/// The FCLIB error of (r, v) on g, its scale from a factorisation of its own.
+double independent_global_error(const GlobalProblem& g, const Vector& r, const Vector& v) {
+  const GlobalReduction<> reduction{GlobalProblemView(g), /*form_W=*/false};
+  return global_error_report(g, reduction.free_velocity_norm(), r, v).error;
+}
+
+}  // namespace
+
+TEST_CASE("ppa-global: the bundled and shared FC/I problems to 1e-8, and warm starts", "[ppa][global]") {
+  std::vector<std::string> files = fcsolve_test::bundled_files("global");
+  REQUIRE(files.size() >= 3);
+  if (fcsolve_test::have_shared_data()) {
+    for (const auto& f : fcsolve_test::fclib_files("global")) files.push_back(f);
+  } else {
+    WARN("no shared FCLIB collection at " << fcsolve_test::shared_data_dir()
+                                          << ": the bundled global problems only");
+  }
+  for (const auto& f : files) {
+    INFO(f);
+    const GlobalProblem g = fclib::read_global(f);
+    REQUIRE(g.d == 3);
+    REQUIRE_FALSE(g.has_bilateral());
+    ProximalPointGlobal<Coulomb3D> ppa;
+    ppa.settings().max_time = 60;  // a guard; the largest takes about a second
+    ppa.compute(g);
+    Vector r = Vector::Zero(g.size()), v(g.num_dofs());
+    ppa.solve(r, v);
+    CHECK(ppa.info().converged());
+    const double e = independent_global_error(g, r, v);
+    CHECK(e <= 1e-8);
+    CHECK(ppa.info().error == Approx(e).epsilon(1e-8).margin(1e-300));
+    // restarted from its own solution (v is recomputed from r)
+    ppa.solve(r, v);
+    CHECK(ppa.info().converged());
+    CHECK(ppa.info().iterations <= 2);
+    CHECK(independent_global_error(g, r, v) <= 1e-8);
+  }
+}
+
+TEST_CASE("global Newton's contact compliance: 0 changes nothing, c > 0 solves FC/II(W + c I, q)",
+          "[ppa][global][compliance]") {
+  const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("Box_Stacks-i0035-31-0.hdf5"));
+  using GlobalNsn = GlobalNewton<AlartCurnierFunction, Coulomb3D>;
+  const Index m = g.size(), n = g.num_dofs();
+  GlobalNsn plain;
+  plain.compute(g);
+  Vector r0 = Vector::Zero(m), v0(n);
+  plain.solve(r0, v0);
+  REQUIRE(plain.info().converged());
+
+  SECTION("a compliance set and reset to 0 gives the plain solve, bit for bit") {
+    GlobalNsn toggled;
+    toggled.compute(g);
+    toggled.set_compliance(0.5 * toggled.lumped_diagonal_mean());
+    Vector r = Vector::Zero(m), v(n);
+    toggled.solve(r, v);
+    toggled.set_compliance(0);
+    r.setZero();
+    toggled.solve(r, v);
+    CHECK(toggled.info().iterations == plain.info().iterations);
+    CHECK((r.array() == r0.array()).all());
+    CHECK((v.array() == v0.array()).all());
+    CHECK(toggled.free_velocity_norm() == plain.free_velocity_norm());
+  }
+  SECTION("c > 0 is the reduced problem with W + c I (problem/reduction.hpp, ProximalProblem)") {
+    const double c = 0.3 * plain.lumped_diagonal_mean();
+    REQUIRE(c > 0);
+    GlobalNsn compliant;
+    compliant.compute(g);
+    compliant.set_compliance(c);
+    Vector r = Vector::Zero(m), v(n);
+    compliant.solve(r, v);
+    REQUIRE(compliant.info().converged());
+    const GlobalReduction<> reduction{GlobalProblemView(g)};
+    ProximalProblem prox;
+    prox.compute(reduction.local());
+    prox.set_alpha(c);
+    prox.set_centre(Vector::Zero(m));
+    const LocalProblemView& sub = prox.view();
+    const LocalProblem copy =
+        make_local(3, DenseMatrix(SparseMatrix(sub.W)), Vector(sub.q), Vector(g.mu));
+    CHECK(local_error(copy, r) <= 1e-7);
+    CHECK((r - r0).norm() > 1e-6 * r0.norm());  // and it is another problem
+  }
+  SECTION("bad compliances are usage errors") {
+    CHECK_THROWS_AS(plain.set_compliance(-1), UsageError);
+    CHECK_THROWS_AS(plain.set_compliance(std::nan("")), UsageError);
+    GlobalNsn fresh;
+    CHECK_THROWS_AS(fresh.set_compliance(1), UsageError);
+  }
+}
+
+TEST_CASE("ppa-global through the registry: native FC/I, global-only", "[ppa][global][catalogue]") {
+  const auto& e = registry::find("ppa-global");
+  CHECK(e.solves_global_natively());
+  CHECK_FALSE(e.solve_local);
+  const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("GFC3D_Example1.hdf5"));
+  registry::SolveRequest req = registry::make_request(e);
+  const registry::SolveOutcome out = registry::solve(GlobalProblemView(g), e, req);
+  CHECK(out.info.converged());
+  CHECK(independent_global_error(g, out.r, out.v) <= 1e-8);
+  CHECK(out.info.message.find("subproblems") != std::string::npos);  // solved natively
+  // FC/II input is refused, as by the other global-only entries (nsn-ac-global)
+  const LocalProblem p = fclib::read_local(fcsolve_test::bundled("Capsules-i101-404.hdf5"));
+  CHECK_THROWS_AS(registry::solve(LocalProblemView(p), e, req), UsageError);
+  CHECK_THROWS_AS(registry::solve(LocalProblemView(p), registry::find("nsn-ac-global"), req), UsageError);
+}
+
+TEST_CASE("ppa-global: typed errors, budgets and the best iterate", "[ppa][global][api]") {
+  const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("Box_Stacks-i0035-31-0.hdf5"));
+  ProximalPointGlobal<Coulomb3D> ppa;
+  Vector r = Vector::Zero(g.size()), v(g.num_dofs());
+  CHECK_THROWS_AS(ppa.solve(r, v), UsageError);  // before compute()
+  GlobalProblem bilateral = g;
+  bilateral.G = SparseMatrix(g.num_dofs(), 1);
+  bilateral.G.insert(0, 0) = 1;
+  bilateral.G.makeCompressed();
+  bilateral.b = Vector::Zero(1);
+  CHECK_THROWS_AS(ppa.compute(bilateral), UsageError);
+  ppa.compute(g);
+  Vector short_v(g.num_dofs() - 1);
+  CHECK_THROWS_AS(ppa.solve(r, short_v), InvalidProblem);
+  r[0] = std::nan("");
+  CHECK_THROWS_AS(ppa.solve(r, v), InvalidProblem);
+  r.setZero();
+  SECTION("an iteration budget returns the best iterate with its true error") {
+    ppa.settings().max_iter = 1;
+    ppa.solve(r, v);
+    CHECK(ppa.info().status == Status::MaxIterations);
+    CHECK(ppa.info().error == Approx(independent_global_error(g, r, v)).epsilon(1e-9));
+  }
+  SECTION("bad settings are usage errors") {
+    ppa.settings().alpha_min = 0;
+    CHECK_THROWS_AS(ppa.solve(r, v), UsageError);
+  }
+  SECTION("the callback sees each subproblem's full error and can stop the solve") {
+    int calls = 0;
+    ppa.settings().callback = [&](const IterationInfo& it) {
+      ++calls;
+      CHECK(it.full_error);
+      return true;
+    };
+    ppa.solve(r, v);
+    CHECK(calls == 1);
+    CHECK(ppa.info().status == Status::Stopped);
+  }
 }

@@ -1,6 +1,8 @@
 // The Newton matrix of the global form of FC/I in the unknowns (v, r):
 //   K = [ M      -H ]   rows: M v - H r - f = 0          (n)
 //       [ A H^T   B ]         G(r, H^T v + w) = 0        (m = d nc)
+// (B + c A with a contact compliance c, u = H^T v + w + c r: the proximal
+// subproblem of ppa/proximal_point_global.hpp).
 // (A, B block diagonal from the formulation). M and H are copied into the
 // pattern once; an iteration rewrites only the A H^T and B blocks, through
 // positions precomputed here. In column i (a degree of freedom) the rows of
@@ -68,14 +70,21 @@ class GlobalJacobian {
   /// K with M and -H in place, the contact rows zero.
   void initialise(SparseMatrix& K) const { K = pattern_; }
 
-  /// Writes A H^T and B into K (values only).
-  void assemble(const BlockList& A, const BlockList& B, SparseMatrix& K) const {
+  /// Writes A H^T and B into K (values only); with a contact compliance c
+  /// (u = H^T v + w + c r) the r-block is B + c A, as dG/dr = A du/dr + B.
+  void assemble(const BlockList& A, const BlockList& B, SparseMatrix& K, double compliance = 0) const {
     double* values = K.valuePtr();
     for (std::size_t p = 0; p < h_.size(); ++p)
       Eigen::Map<SmallVector<D>>(values + coupling_position_[p]) = A[contact_[p]] * h_[p];
-    for (std::size_t a = 0; a < B.size(); ++a)
+    auto write = [&](std::size_t a, const Block& block) {
       for (int k = 0; k < D; ++k)
-        Eigen::Map<SmallVector<D>>(values + block_position_[a * D + k]) = B[a].col(k);
+        Eigen::Map<SmallVector<D>>(values + block_position_[a * D + k]) = block.col(k);
+    };
+    if (compliance == 0) {
+      for (std::size_t a = 0; a < B.size(); ++a) write(a, B[a]);
+    } else {
+      for (std::size_t a = 0; a < B.size(); ++a) write(a, B[a] + compliance * A[a]);
+    }
   }
 
   /// B += delta I: the shift acts on the contact rows only (on the reduced

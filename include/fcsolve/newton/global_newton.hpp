@@ -11,6 +11,12 @@
 // approximation W^aa ~ H_a^T diag(M)^-1 H_a. There is no hybrid fallback in
 // this form (its sweeps need W); bilateral constraints (G, b) are not
 // supported here: use the reduced form (Newton) for them.
+//
+// An optional contact compliance c >= 0 (set_compliance; 0 by default, and
+// then nothing changes, at no cost) makes u = H^T v + w + c r: the proximal
+// subproblem FC/II(W + c I, ...) of ppa/proximal_point_global.hpp without W.
+// The r-block of the Newton matrix becomes B + c A (dG/dr = A du/dr + B),
+// the step's du = H^T dv + c dr, and the rho strategies see W^aa + c I.
 #pragma once
 
 #include <fcsolve/core/solver_contract.hpp>
@@ -23,9 +29,11 @@
 #include <fcsolve/problem/validate.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace fcsolve {
 
@@ -36,7 +44,7 @@ class GlobalNewton
   using Base = ContactNewton<GlobalNewton, Formulation, Cone>;
   friend NewtonLoop<GlobalNewton>;
   friend Base;  // calls update_velocity()
-  using Base::r_, Base::u_, Base::best_r_, Base::residual_, Base::psi_, Base::scale_, Base::reference_norm_;
+  using Base::r_, Base::u_, Base::best_r_, Base::residual_, Base::psi_, Base::reference_norm_;
   using Base::counters_, Base::info_, Base::settings_;
 
  public:
@@ -61,20 +69,22 @@ class GlobalNewton
     system_.compute(jacobian_);
     const Vector lumped = lumped_inverse_mass(p.M);
     const SparseMatrix H(p.H);
-    residual_.compute(p.mu, settings_.rho_strategy, settings_.rho, [&](Index a) {
+    lumped_blocks_.resize(std::size_t(p.num_contacts()));
+    for (Index a = 0; a < p.num_contacts(); ++a) {
       const SparseMatrix Ha = H.middleCols(a * d, d);
       const SparseMatrix Wa = Ha.transpose() * lumped.asDiagonal() * Ha;
-      return SmallMatrix<d>(Wa.toDense());
-    });
+      lumped_blocks_[std::size_t(a)] = Wa.toDense();
+    }
     const Index n = p.num_dofs(), m = p.size();
-    for (Vector* x : {&r_, &u_, &best_r_, &Hdv_}) x->resize(m);
-    for (Vector* x : {&v_, &best_v_, &Mv_, &Hr_}) x->resize(n);
+    for (Vector* x : {&r_, &u_, &best_r_, &du_}) x->resize(m);
+    for (Vector* x : {&v_, &best_v_}) x->resize(n);
     F_.resize(n + m);
     dz_.resize(n + m);
-    q_norm_ = reduction_.free_velocity_norm();
-    scale_ = error_scale(q_norm_);
-    f_norm_ = p.f.norm();
-    reference_norm_ = residual_.reference_norm(reduction_.local().q);  // q = H^T M^-1 f + w
+    free_velocity_ = reduction_.local().q;  // q = H^T M^-1 f + w
+    forced_velocity_ = free_velocity_ - p.w;
+    error_.emplace(p, reduction_.free_velocity_norm());
+    compliance_ = 0;
+    update_contact_terms();
     info_ = SolverInfo();
     info_.setup_seconds = clock.seconds();
     return *this;
@@ -96,12 +106,37 @@ class GlobalNewton
     return info_;
   }
 
-  /// ||H^T M^-1 f + w||, the FCLIB error scale, known since compute().
+  /// The contact compliance c >= 0 of u = H^T v + w + c r (0 after
+  /// compute()). It also rereads w from the viewed data: a caller that
+  /// rewrote w in place (the proximal subproblem's w - c r_k) calls it
+  /// after. O(nnz(H)), no factorisation; rho and the error scale follow.
+  GlobalNewton& set_compliance(double c) {
+    if (!problem_) throw UsageError("GlobalNewton: set_compliance() before compute()");
+    if (!(c >= 0) || !std::isfinite(c)) throw UsageError("GlobalNewton: the compliance must be finite and >= 0");
+    compliance_ = c;
+    free_velocity_ = forced_velocity_ + problem_->w;
+    update_contact_terms();
+    return *this;
+  }
+  double compliance() const { return compliance_; }
+
+  /// v = M^-1 (H r + f), by the factorisation of compute().
+  Vector velocity(const Eigen::Ref<const Vector>& r) const { return reduction_.velocity(r); }
+
+  /// ||H^T M^-1 f + w||, the FCLIB error scale, known since compute()
+  /// (with the w of the last set_compliance()).
   double free_velocity_norm() const { return q_norm_; }
+  /// mean diag(H^T diag(M)^-1 H): the lumped W^aa of the rho strategies,
+  /// averaged; O(nnz(H)) where mean diag(W) would need M^-1 H.
+  double lumped_diagonal_mean() const {
+    double sum = 0;
+    for (const SmallMatrix<d>& Wa : lumped_blocks_) sum += Wa.diagonal().cwiseAbs().sum();
+    return lumped_blocks_.empty() ? 0.0 : sum / double(d * lumped_blocks_.size());
+  }
 
   /// The complementarity and equilibrium parts of the error of the last solve.
-  double complementarity() const { return complementarity_; }
-  double equilibrium() const { return equilibrium_; }
+  double complementarity() const { return error_->complementarity(); }
+  double equilibrium() const { return error_->equilibrium(); }
 
  private:
   static Vector lumped_inverse_mass(const SparseMap& M) {
@@ -112,15 +147,22 @@ class GlobalNewton
   }
 
   // ---- hooks of NewtonLoop (refresh, set_rho_factor: ContactNewton)
-  /// max(complementarity, equilibrium), as core/error.hpp's global error.
-  double error() {
-    const GlobalProblemView& p = *problem_;
-    complementarity_ = std::sqrt(natural_map_norms<Cone>(r_, u_, p.mu).squared_sum) / scale_;
-    residual_equilibrium();
-    const double denom = std::max({f_norm_, Mv_.norm(), Hr_.norm()});
-    equilibrium_ = F_.head(p.num_dofs()).norm() / (denom > 0 ? denom : 1.0);
-    return std::max(complementarity_, equilibrium_);
+  /// rho (from W^aa ~ lumped block + c I), ||q|| and the error scale, and
+  /// the reference ||G(0, q)|| of the shift, for the current w and c.
+  void update_contact_terms() {
+    residual_.compute(problem_->mu, settings_.rho_strategy, settings_.rho, [&](Index a) {
+      SmallMatrix<d> Wa = lumped_blocks_[std::size_t(a)];
+      if (compliance_ != 0) Wa.diagonal().array() += compliance_;
+      return Wa;
+    });
+    q_norm_ = free_velocity_.norm();
+    error_->set_scale(q_norm_);
+    reference_norm_ = residual_.reference_norm(free_velocity_);
   }
+
+  /// max(complementarity, equilibrium), as core/error.hpp's global error
+  /// (with a compliance: that of the compliant problem).
+  double error() { return (*error_)(r_, u_, v_); }
   void save_best() {
     best_r_ = r_;
     best_v_ = v_;
@@ -137,17 +179,18 @@ class GlobalNewton
   bool newton_step() {
     const Index n = problem_->num_dofs();
     FCSOLVE_NO_MALLOC_BEGIN();
-    jacobian_.assemble(residual_.A(), residual_.B(), system_.matrix());
-    residual_equilibrium();  // F = (M v - H r - f, G)
+    jacobian_.assemble(residual_.A(), residual_.B(), system_.matrix(), compliance_);
+    F_.head(n) = error_->balance_residual(r_, v_);  // F = (M v - H r - f, G)
     F_.tail(F_.size() - n) = residual_.G();
     FCSOLVE_NO_MALLOC_END();
     if (!system_.solve(F_, dz_, this->shift(psi_, reference_norm_),
                        settings_.singular_regularization, counters_))
       return false;
     FCSOLVE_NO_MALLOC_BEGIN();
-    Hdv_.noalias() = problem_->H.transpose() * dz_.head(n);
     const auto dr = dz_.tail(dz_.size() - n);
-    const bool stepped = this->take_step([&](double s) { return residual_.trial(r_, dr, u_, Hdv_, s); },
+    du_.noalias() = problem_->H.transpose() * dz_.head(n);
+    if (compliance_ != 0) du_ += compliance_ * dr;
+    const bool stepped = this->take_step([&](double s) { return residual_.trial(r_, dr, u_, du_, s); },
                                          [&](double t) {
                                            v_ += t * dz_.head(n);
                                            r_ += t * dr;
@@ -159,22 +202,18 @@ class GlobalNewton
   void update_velocity() {
     u_.noalias() = problem_->H.transpose() * v_;
     u_ += problem_->w;
-  }
-  /// F.head(n) = M v - H r - f, with M v and H r kept for the error's scale.
-  void residual_equilibrium() {
-    const GlobalProblemView& p = *problem_;
-    Mv_.noalias() = p.M * v_;
-    Hr_.noalias() = p.H * r_;
-    F_.head(p.num_dofs()) = Mv_ - Hr_ - p.f;
+    if (compliance_ != 0) u_ += compliance_ * r_;
   }
 
   std::optional<GlobalProblemView> problem_;
   GlobalReduction<Backend> reduction_;
   GlobalJacobian<d> jacobian_;
   RegularisedNewtonSystem<LinearSolver, GlobalJacobian<d>> system_;  // points to jacobian_
-  Vector v_, best_v_, Hdv_, Mv_, Hr_, F_, dz_;
-  double q_norm_ = 0, f_norm_ = 0;
-  double complementarity_ = 0, equilibrium_ = 0;
+  std::optional<GlobalErrorEvaluator<Cone>> error_;
+  std::vector<SmallMatrix<d>, Eigen::aligned_allocator<SmallMatrix<d>>> lumped_blocks_;
+  Vector free_velocity_, forced_velocity_;  // H^T M^-1 f + w and H^T M^-1 f
+  Vector v_, best_v_, du_, F_, dz_;
+  double q_norm_ = 0, compliance_ = 0;
 };
 
 }  // namespace fcsolve

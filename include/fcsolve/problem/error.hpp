@@ -130,6 +130,55 @@ class LocalErrorEvaluator {
   Vector u_;
 };
 
+/// Allocation-free global error evaluation for solvers on FC/I without
+/// bilateral constraints: global_error_report's error (below), with work
+/// vectors cached. The reduced ||q|| is the caller's (it costs a
+/// factorisation of M); set_scale() replaces it when the view's w changes.
+template <class Cone>
+class GlobalErrorEvaluator {
+ public:
+  GlobalErrorEvaluator(const GlobalProblemView& p, double reduced_q_norm)
+      : p_(p), scale_(error_scale(reduced_q_norm)), f_norm_(p.f.norm()), u_(p.size()),
+        Mv_(p.num_dofs()), Hr_(p.num_dofs()), balance_(p.num_dofs()) {}
+
+  /// max(complementarity, equilibrium) of (r, v), with the velocity u given
+  /// (H^T v + w, or the caller's own u, e.g. with a compliance term).
+  double operator()(const Eigen::Ref<const Vector>& r, const Eigen::Ref<const Vector>& u,
+                    const Eigen::Ref<const Vector>& v) {
+    complementarity_ = std::sqrt(natural_map_norms<Cone>(r, u, p_.mu).squared_sum) / scale_;
+    balance_residual(r, v);
+    const double denom = std::max({f_norm_, Mv_.norm(), Hr_.norm()});
+    equilibrium_ = balance_.norm() / (denom > 0 ? denom : 1.0);
+    return std::max(complementarity_, equilibrium_);
+  }
+  /// The error of (r, v) with u = H^T v + w.
+  double operator()(const Eigen::Ref<const Vector>& r, const Eigen::Ref<const Vector>& v) {
+    u_.noalias() = p_.H.transpose() * v;
+    u_ += p_.w;
+    return (*this)(r, u_, v);
+  }
+
+  /// M v - H r - f (also what the error's equilibrium part measures).
+  const Vector& balance_residual(const Eigen::Ref<const Vector>& r, const Eigen::Ref<const Vector>& v) {
+    Mv_.noalias() = p_.M * v;
+    Hr_.noalias() = p_.H * r;
+    balance_ = Mv_ - Hr_ - p_.f;
+    return balance_;
+  }
+
+  void set_scale(double reduced_q_norm) { scale_ = error_scale(reduced_q_norm); }
+  double scale() const { return scale_; }
+  /// The two parts of the last error.
+  double complementarity() const { return complementarity_; }
+  double equilibrium() const { return equilibrium_; }
+
+ private:
+  GlobalProblemView p_;
+  double scale_, f_norm_;
+  double complementarity_ = 0, equilibrium_ = 0;
+  Vector u_, Mv_, Hr_, balance_;
+};
+
 /// The error of a global (FC/I) solution.
 struct GlobalErrorReport {
   double error = 0;            ///< max(complementarity, equilibrium)

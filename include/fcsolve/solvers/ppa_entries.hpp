@@ -1,6 +1,9 @@
 // Catalogue entries of the proximal point family (ppa.hpp):
 //   ppa        inner semismooth Newton, Alart-Curnier function (Siconos' PROX)
 //   ppa-nsgs   inner NSGS with exact one-contact solutions
+//   ppa-global FC/I natively in (v, r), inner global Newton (Alart-Curnier)
+//              with a contact compliance alpha; global-only, as nsn-ac-global
+//              (FC/I with bilateral constraints: ppa on the reduced form)
 // Small scenes (<= kDenseStorageMaxContacts contacts) store W dense (and
 // Newton factorises with a dense LU), the others sparse, as the inner
 // solver's own entries do.
@@ -37,11 +40,9 @@ inline std::vector<SettingSpec> settings_specs() {
   };
 }
 
-template <class Solver>
-SolveOutcome run(const LocalProblemView& p, const SolveRequest& req) {
-  static_assert(satisfies_solver_contract_v<Solver, LocalProblemView>);
-  Solver solver;
-  auto& s = solver.settings();
+/// The request's outer settings into a ProximalPointSettings.
+template <class Settings>
+void configure(Settings& s, const SolveRequest& req) {
   static_cast<SolverSettings&>(s) = req.common;
   const SettingValues& v = req.settings;
   s.sigma = v.real("sigma");
@@ -50,6 +51,13 @@ SolveOutcome run(const LocalProblemView& p, const SolveRequest& req) {
   s.alpha_max = v.real("alpha_max");
   s.fast_inner_iterations = int(v.integer("fast_inner_iterations"));
   s.inner_max_iter = int(v.integer("inner_max_iter"));
+}
+
+template <class Solver>
+SolveOutcome run(const LocalProblemView& p, const SolveRequest& req) {
+  static_assert(satisfies_solver_contract_v<Solver, LocalProblemView>);
+  Solver solver;
+  configure(solver.settings(), req);
   return compute_and_solve(solver, p, req);
 }
 
@@ -71,11 +79,34 @@ using NewtonInner = Newton<AlartCurnierFunction, Cone, Storage>;
 template <class Cone, class Storage>
 using NsgsInner = Nsgs<Cone, Storage>;
 
-inline SolverEntry entry(std::string name, std::string summary, LocalSolveFunction solve) {
+/// ppa-global: FC/I in (v, r); bilateral constraints go through the
+/// registry's reduction to ppa (GlobalNewton does not handle G, b).
+inline GlobalSolveFunction global_solver() {
+  return [](const GlobalProblemView& p, const SolveRequest& req) {
+    if (p.has_bilateral())
+      return solve_bilateral_by_reduction(p, [&](const LocalProblemView& reduced) {
+        return solver<NewtonInner, SparseStorage>()(reduced, req);
+      });
+    return dispatch_cone(p.d, [&](auto cone) {
+      using Solver = ProximalPointGlobal<decltype(cone)>;
+      static_assert(satisfies_solver_contract_v<Solver, GlobalProblemView>);
+      Solver ppa;
+      configure(ppa.settings(), req);
+      ppa.compute(p);
+      SolveOutcome out;
+      out.r = initial_reactions(req, p.size());
+      out.v.resize(p.num_dofs());
+      out.info = ppa.solve(out.r, out.v);
+      out.reduced_q_norm = ppa.free_velocity_norm();  // the registry need not factorise M again
+      return out;
+    });
+  };
+}
+
+inline SolverEntry entry(std::string name, std::string summary) {
   SolverEntry e(std::move(name), "ppa", std::move(summary));
   e.settings = settings_specs();
   e.default_max_iter = kDefaults.max_iter;
-  e.solve_local = std::move(solve);
   return e;
 }
 
@@ -83,13 +114,20 @@ inline SolverEntry entry(std::string name, std::string summary, LocalSolveFuncti
 
 inline void add_ppa_solvers(std::vector<SolverEntry>& v) {
   using namespace ppa_detail;
-  v.push_back(entry("ppa",
-                    "proximal point, FC/II(W + alpha I, q - alpha r_k) by semismooth Newton "
-                    "(Alart-Curnier) (PROX)",
-                    solver<NewtonInner, SparseStorage>()));
-  v.push_back(entry("ppa-nsgs",
-                    "proximal point, FC/II(W + alpha I, q - alpha r_k) by NSGS (exact local solutions)",
-                    solver<NsgsInner, BlockSparseStorage>()));
+  SolverEntry newton = entry("ppa",
+                             "proximal point, FC/II(W + alpha I, q - alpha r_k) by semismooth Newton "
+                             "(Alart-Curnier) (PROX)");
+  newton.solve_local = solver<NewtonInner, SparseStorage>();
+  v.push_back(std::move(newton));
+  SolverEntry nsgs =
+      entry("ppa-nsgs", "proximal point, FC/II(W + alpha I, q - alpha r_k) by NSGS (exact local solutions)");
+  nsgs.solve_local = solver<NsgsInner, BlockSparseStorage>();
+  v.push_back(std::move(nsgs));
+  SolverEntry global = entry("ppa-global",
+                             "proximal point on FC/I in (v, r), without forming W: w - alpha r_k and "
+                             "compliance alpha, by semismooth Newton (Alart-Curnier)");
+  global.solve_global = global_solver();
+  v.push_back(std::move(global));
 }
 
 }  // namespace registry
