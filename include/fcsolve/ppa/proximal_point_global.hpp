@@ -59,11 +59,9 @@ class ProximalPointGlobal : public ProximalPointLoop<ProximalPointGlobal<Cone, I
   /// for bilateral constraints.
   ProximalPointGlobal& compute(const GlobalProblemView& p) {
     Stopwatch clock;
-    validate_dimension(p.d, d);
-    validate(p);
     if (p.has_bilateral())
       throw UsageError("ProximalPointGlobal does not handle bilateral constraints (G, b): use ProximalPoint");
-    problem_.emplace(p);
+    problem_.emplace(validated(p, d));
     shifted_w_ = p.w;
     // the subproblem: the same M, H, f, mu, with w' = w - alpha r_k (ours)
     subproblem_.emplace(p.d, p.M, p.H, p.f, VectorMap(shifted_w_.data(), shifted_w_.size()), p.mu);

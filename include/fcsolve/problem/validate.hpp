@@ -134,6 +134,12 @@ inline const LocalProblemView& validated(const LocalProblemView& p, int solver_d
   return p;
 }
 
+inline const GlobalProblemView& validated(const GlobalProblemView& p, int solver_d) {
+  validate_dimension(p.d, solver_d);
+  validate(p);
+  return p;
+}
+
 inline void validate(const LocalProblem& p) { validate(LocalProblemView(p)); }
 inline void validate(const GlobalProblem& p) { validate(GlobalProblemView(p)); }
 
