@@ -258,6 +258,7 @@ def test_family_colours_stable_and_distinct():
     assert len({charts.family_colour(f) for f in known}) == len(known)
     assert charts.family_colour("someday") == charts.family_colour("someday")
     assert a["nsn-ac"]["label"] == "newton: nsn-ac" and a["auto"]["label"] == "auto"
+    assert a["siconos:nsn-ac"]["label"] == "siconos:nsn-ac"
 
 
 def test_family_view_profiles_keep_every_problem(tmp_path):

@@ -62,7 +62,9 @@ def family_styles(lines, peers=()):
                               linestyle="--" if peer else "-", peer=peer,
                               linewidth=3.2 if family == "auto" else 1.6,
                               zorder=5 if family == "auto" else 2,
-                              label=solver if family == solver else f"{family}: {solver}")
+                              # a peer's name says its family (siconos:nsn-ac)
+                              label=solver if family == solver or ":" in solver
+                              else f"{family}: {solver}")
     return styles
 
 
