@@ -91,11 +91,13 @@ def test_report_is_self_contained(tmp_path):
     page = campaign.build_report(str(tmp_path))
     html = open(page).read()
     images = re.findall(r'<img [^>]*src="([^"]*)"', html)
-    assert len(images) == 2 + 1 + 1 + 2  # profiles, work-precision, scatter, maps (2 tols)
+    # family view (3) + profiles, work-precision, scatter, maps (2 tols)
+    assert len(images) == 3 + 2 + 1 + 1 + 2
     assert all(src.startswith("data:image/png;base64,") for src in images)
     assert "<table" in html and "P3" in html and "timeout" in html
     pngs = sorted(p.name for p in (tmp_path / "report").glob("*.png"))
     assert pngs == ["failure_map_tol0.0001.png", "failure_map_tol1e-08.png",
+                    "family_failure_map_tol1e-08.png", "family_profile.png", "family_work_precision.png",
                     "profile_tol0.0001.png", "profile_tol1e-08.png", "time_vs_error.png",
                     "work_precision.png"]
     for p in (tmp_path / "report").glob("*.png"):
@@ -179,3 +181,106 @@ def test_progress_line_with_eta_when_not_a_tty():
     line = stream.getvalue().splitlines()[-1]
     assert "1/4" in line and "25%" in line and "eta 00:30" in line and "P1 A tol=1e-08" in line
     assert "\r" not in stream.getvalue()
+
+
+# ---------------------------------------------------------------- family view
+
+def synthetic_rows(runs, tols=(1e-4, 1e-8), problems=("P1", "P2", "P3")):
+    """Typed rows without a CSV. runs: {solver: {(problem, tol): seconds}};
+    a run listed is solved, every other (problem, tol) is a timeout."""
+    rows = []
+    for solver, solved_runs in runs.items():
+        for p in problems:
+            for tol in tols:
+                t = solved_runs.get((p, tol))
+                rows.append(dict(problem=p, solver=solver, tol=tol, family="Q",
+                                 seconds=t if t is not None else 10.0, iterations=1,
+                                 failure="converged" if t is not None else "timeout",
+                                 solved=t is not None, time_limit=10.0))
+    return rows
+
+
+def everywhere(seconds, problems=("P1", "P2", "P3"), tols=(1e-4, 1e-8)):
+    return {(p, t): seconds for p in problems for t in tols}
+
+
+def test_best_member_most_solved_at_tightest_tol_then_least_time():
+    rows = synthetic_rows({
+        # x solves 2 at 1e-8 in 5 s, y 2 in 3 s: y; z solves all at 1e-4 only
+        "x": {("P1", 1e-8): 1.0, ("P2", 1e-8): 4.0},
+        "y": {("P1", 1e-8): 2.0, ("P3", 1e-8): 1.0},
+        "z": everywhere(0.1, tols=(1e-4,)),
+        # equal count and time: the name decides, whatever the row order
+        "w2": {("P1", 1e-8): 1.0}, "w1": {("P2", 1e-8): 1.0},
+        "siconos:nsgs": {("P1", 1e-8): 1.0}, "siconos:nsn-ac": everywhere(9.0),
+    })
+    families = {"x": "f", "y": "f", "z": "f", "w2": "g", "w1": "g"}
+    best = analysis.best_members(rows, families)
+    assert best == {"f": "y", "g": "w1", "siconos": "siconos:nsn-ac"}
+    assert analysis.solved_and_time(rows, "y", 1e-8) == (2, 3.0)
+    # without recorded families, a solver is its own family, a peer its peer
+    assert analysis.family_of_solver("nsgs") == "nsgs"
+    assert analysis.family_of_solver("siconos:prox") == "siconos"
+
+
+def test_family_lines_at_most_eight_auto_always_kept():
+    # 11 families; family k's only member solves k problems... auto solves none
+    problems = tuple(f"P{k}" for k in range(12))
+    runs = {f"s{k}": {(p, 1e-8): 1.0 + k for p in problems[:k]} for k in range(1, 11)}
+    runs["auto"] = {}
+    families = {f"s{k}": f"fam{k}" for k in range(1, 11)}
+    families["auto"] = "auto"
+    rows = synthetic_rows(runs, tols=(1e-8,), problems=problems)
+    lines, left_out = analysis.family_lines(rows, families)
+    assert len(lines) == 8 and lines[0] == ("auto", "auto")
+    assert [f for f, _ in lines[1:]] == [f"fam{k}" for k in range(10, 3, -1)]
+    assert left_out == ["fam3", "fam2", "fam1"]
+    few, none_left = analysis.family_lines(rows, families, max_lines=20)
+    assert len(few) == 11 and none_left == []
+    # no auto in the campaign: 8 best families
+    no_auto = [r for r in rows if r["solver"] != "auto"]
+    lines, left_out = analysis.family_lines(no_auto, families)
+    assert len(lines) == 8 and ("auto", "auto") not in lines and len(left_out) == 2
+
+
+def test_family_colours_stable_and_distinct():
+    from fcsolve.campaign import charts
+
+    a = charts.family_styles([("auto", "auto"), ("nsgs", "nsgs-ac"), ("newton", "nsn-ac"),
+                              ("siconos", "siconos:nsn-ac")], peers={"siconos"})
+    b = charts.family_styles([("newton", "nsn-fb"), ("nsgs", "psor"), ("siconos", "siconos:nsgs"),
+                              ("vi", "vi-eg")], peers={"siconos"})
+    assert a["nsgs-ac"]["color"] == b["psor"]["color"] == charts.family_colour("nsgs")
+    assert a["nsn-ac"]["color"] == b["nsn-fb"]["color"]
+    assert a["siconos:nsn-ac"]["linestyle"] == "--" and a["nsgs-ac"]["linestyle"] == "-"
+    assert a["auto"]["color"] == "#000000" and a["auto"]["linewidth"] > a["nsgs-ac"]["linewidth"]
+    known = list(charts.FAMILY_COLOURS)
+    assert len({charts.family_colour(f) for f in known}) == len(known)
+    assert charts.family_colour("someday") == charts.family_colour("someday")
+    assert a["nsn-ac"]["label"] == "newton: nsn-ac" and a["auto"]["label"] == "auto"
+    assert a["siconos:nsn-ac"]["label"] == "siconos:nsn-ac"
+
+
+def test_family_view_profiles_keep_every_problem(tmp_path):
+    rows = synthetic_rows({"a": {("P1", 1e-8): 1.0}, "b": {("P1", 1e-8): 2.0, ("P2", 1e-8): 1.0},
+                           "c": everywhere(0.5)})
+    problems_, solvers, T = analysis.measure_table(rows, "seconds", 1e-8, ["a", "b"])
+    assert problems_ == ["P1", "P2", "P3"] and solvers == ["a", "b"]
+    np.testing.assert_array_equal(analysis.performance_ratios(T), [[1, 2], [INF, 1], [INF, INF]])
+    wp = analysis.work_precision(rows, ["b", "a"])
+    assert list(wp) == ["b", "a"] and wp["a"][1][2] == pytest.approx(1 / 3)
+
+
+def test_report_family_view_uses_recorded_families(tmp_path):
+    import json
+
+    hand_made_csv(tmp_path)
+    solvers = [dict(name="A", family="nsgs", peer=False), dict(name="B", family="nsgs", peer=False),
+               dict(name="C", family="auto", peer=False)]
+    (tmp_path / "campaign.json").write_text(json.dumps(dict(invocations=[dict(solvers=solvers)])))
+    html = open(campaign.build_report(str(tmp_path))).read()
+    # B solves 3 at 1e-8, A 2: B is nsgs' best member; C is auto
+    section = html[html.index("Family view"):html.index("Summary per solver")]
+    assert re.search(r"nsgs</td><td>B</td><td>3</td>", section)
+    assert re.search(r"auto</td><td>C</td><td>1</td>", section)
+    assert "left out" not in section.replace("<b>left out</b>", "")

@@ -36,10 +36,15 @@ def solver_names(rows):
     return [n for n in names if ":" not in n] + [n for n in names if ":" in n]
 
 
-def measure_table(rows, measure, tol):
-    """(problems, solvers, T) with T[p, s] the measure when solved, inf otherwise."""
+def measure_table(rows, measure, tol, solvers=None):
+    """(problems, solvers, T) with T[p, s] the measure when solved, inf otherwise.
+
+    `solvers` restricts the columns (a family view); the problems stay every
+    problem of the campaign at tol."""
     at_tol = [r for r in rows if r["tol"] == tol]
-    problems, solvers = ordered(r["problem"] for r in at_tol), solver_names(at_tol)
+    problems = ordered(r["problem"] for r in at_tol)
+    solvers = list(solvers) if solvers is not None else solver_names(at_tol)
+    at_tol = [r for r in at_tol if r["solver"] in set(solvers)]
     pi = {p: k for k, p in enumerate(problems)}
     si = {s: k for k, s in enumerate(solvers)}
     T = np.full((len(problems), len(solvers)), np.inf)
@@ -117,8 +122,9 @@ def by_family(rows, tol):
     return {f: {s: tuple(v) for s, v in d.items()} for f, d in out.items()}
 
 
-def work_precision(rows):
-    """Time to reach each accuracy, per solver: {solver: [(tol, time, fraction)]}.
+def work_precision(rows, solvers=None):
+    """Time to reach each accuracy, per solver: {solver: [(tol, time, fraction)]}
+    (every solver of the campaign, or those in `solvers`, in that order).
 
     `time` is the geometric mean over every problem of the campaign of the
     solver's time, an unsolved (or unsupported) problem counted at the time
@@ -135,7 +141,8 @@ def work_precision(rows):
             (r["seconds"] or 0 for r in at), default=1.0)
         by_key = {(r["problem"], r["solver"]): r for r in at}
         problems = ordered(r["problem"] for r in at)
-        for s in solver_names(at):
+        for s in (solver_names(at) if solvers is None else
+                  [s for s in solvers if any(r["solver"] == s for r in at)]):
             times, solved_count = [], 0
             for p in problems:
                 r = by_key.get((p, s))
@@ -147,3 +154,77 @@ def work_precision(rows):
             out.setdefault(s, []).append(
                 (tol, geometric_mean(times), solved_count / len(problems)))
     return out
+
+
+# ---------------------------------------------------------------- family view
+# One line per solver family (its best member), auto, and the peers reduced
+# the same way: the all-solver charts of a 30-solver campaign cannot be read.
+
+AUTO_FAMILY = "auto"
+MAX_FAMILY_LINES = 8
+
+
+def family_of_solver(name, families=None):
+    """The solver's family: from `families` ({solver: family}, what campaign.json
+    recorded), else the peer for PEER:NAME, else the name itself."""
+    if families and families.get(name):
+        return families[name]
+    return name.split(":", 1)[0] if ":" in name else name
+
+
+def solved_and_time(rows, solver, tol):
+    """(problems solved, total seconds on the solved ones) of one solver at tol."""
+    count, total = 0, 0.0
+    for r in rows:
+        if r["solver"] == solver and r["tol"] == tol and r["solved"]:
+            count += 1
+            total += max(r["seconds"] or 0.0, MEASURE_FLOOR["seconds"])
+    return count, total
+
+
+def best_members(rows, families=None):
+    """{family: best member}, families in first-seen order.
+
+    The rule: at the tightest tolerance of the campaign, the member that solved
+    the most problems wins; ties go to the smaller total time on the problems it
+    solved, then to the name (so the choice never depends on row order). Solved
+    means the recomputed error within tol, as everywhere in the report. A peer
+    (family = the peer, e.g. siconos) is reduced to its best solver the same way.
+    """
+    if not rows:
+        return {}
+    tight = min(tolerances(rows))
+    members = {}
+    for s in solver_names(rows):
+        members.setdefault(family_of_solver(s, families), []).append(s)
+    best = {}
+    for family, names in members.items():
+        def key(s):
+            count, total = solved_and_time(rows, s, tight)
+            return (-count, total, s)
+        best[family] = min(names, key=key)
+    return best
+
+
+def family_lines(rows, families=None, max_lines=MAX_FAMILY_LINES, always=(AUTO_FAMILY,)):
+    """The lines of the family view: ([(family, solver)], [left-out families]).
+
+    One line per family (best_members). With more families than max_lines, the
+    families in `always` (auto) are kept and the others ranked by problems
+    solved at the tightest tolerance (then total time, then name); the best
+    fill the remaining places, the rest are returned as left out. The kept
+    lines come `always` first, then in that ranking.
+    """
+    best = best_members(rows, families)
+    if not best:
+        return [], []
+    tight = min(tolerances(rows))
+
+    def rank(family):
+        count, total = solved_and_time(rows, best[family], tight)
+        return (-count, total, family)
+
+    kept = [f for f in always if f in best]
+    others = sorted((f for f in best if f not in kept), key=rank)
+    room = max(max_lines - len(kept), 0)
+    return [(f, best[f]) for f in kept + others[:room]], others[room:]

@@ -87,6 +87,66 @@ def _registration_order(rows, out_dir):
     return sorted(rows, key=lambda r: order.get(r["solver"], len(order)))
 
 
+def _solver_families(out_dir):
+    """{solver: family} as campaign.json recorded it (fcsolve solvers --json)."""
+    return {s["name"]: s.get("family") or "" for inv in _invocations(out_dir)
+            for s in inv.get("solvers", [])}
+
+
+def _peer_families(out_dir):
+    return {s.get("family") for inv in _invocations(out_dir) for s in inv.get("solvers", [])
+            if s.get("peer")}
+
+
+def _family_view(rows, out_dir, png):
+    """The family view's charts and its HTML: auto against each family's best
+    member (analysis.best_members, analysis.family_lines)."""
+    families = _solver_families(out_dir)
+    lines, left_out = analysis.family_lines(rows, families)
+    if not lines:
+        return ""
+    solvers = [s for _, s in lines]
+    styles = charts.family_styles(lines, _peer_families(out_dir))
+    note = f" (left out: {', '.join(left_out)})" if left_out else ""
+    tols = analysis.tolerances(rows)
+    tight = min(tols)
+    profile_tols = [t for t in (1e-4, 1e-8) if t in tols] or [tight]
+    profile = charts.family_profiles(rows, profile_tols, png("family_profile.png"), styles,
+                                     solvers, note)
+    wp = charts.work_precision(rows, png("family_work_precision.png"), styles, solvers, note)
+    labels = {s: styles[s]["label"] for s in solvers}
+    maps = [charts.failure_map(rows, t, png(f"family_failure_map_tol{t:g}.png"), solvers, labels,
+                               note) for t in analysis.ordered([t for t in (1e-8,) if t in tols]
+                                                               + [tight])]
+    members = {}
+    for s in analysis.solver_names(rows):
+        members.setdefault(analysis.family_of_solver(s, families), []).append(s)
+    best = analysis.best_members(rows, families)
+    shown = dict(lines)
+    body = []
+    for family, names in members.items():
+        count, total = analysis.solved_and_time(rows, best[family], tight)
+        colour = charts.family_colour(family)
+        body.append([f'<span class="dot" style="background:{colour}"></span>{html.escape(family)}',
+                     html.escape(best[family]), count, _fmt(total),
+                     html.escape(", ".join(n for n in names if n != best[family])),
+                     "yes" if family in shown else "<b>left out</b>"])
+    table = _table(["family", "best member", f"solved at {tight:g}", "total time [s] (solved)",
+                    "other members", "drawn"], body)
+    return ("<h2>Family view: auto against each family's best member</h2><p class='note'>"
+            f"One line per solver family: its best member on this campaign, the one that solved "
+            f"the most problems at the tightest tolerance ({tight:g}), ties broken by the total "
+            f"time on the problems it solved; peers reduced the same way; at most "
+            f"{analysis.MAX_FAMILY_LINES} lines, auto always kept, the others ranked by problems "
+            f"solved at {tight:g}" + (f"; left out: {html.escape(', '.join(left_out))}"
+                                       if left_out else "")
+            + ". One colour per family in every chart; auto bold black; dashed: peers. The "
+            "profiles' ratios are to the best of these lines, over every problem of the "
+            "campaign.</p>" + table + _img(wp, "family work-precision diagram")
+            + _img(profile, "family performance profiles")
+            + "".join(_img(m, "family failure map") for m in maps))
+
+
 def _campaign_info(out_dir):
     inv = _invocations(out_dir)
     if not inv:
@@ -136,6 +196,7 @@ def build_report(out_dir, report_dir=None):
 
     problems = analysis.ordered(r["problem"] for r in rows)
     solvers = analysis.solver_names(rows)
+    sections.append(_family_view(rows, out_dir, png))
     sections.append(f"<h2>Summary per solver</h2><p class='note'>A run is solved iff the error "
                     f"recomputed from its returned solution is &le; tol; times are the solvers' own "
                     f"(setup + solve), medians and geometric means over solved runs only.</p>"
