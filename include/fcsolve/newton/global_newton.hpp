@@ -67,6 +67,7 @@ class GlobalNewton
     reduction_.compute(p, /*form_W=*/false);
     jacobian_.compute(p.M, p.H);
     system_.compute(jacobian_);
+    this->forget_step_time();
     const Vector lumped = lumped_inverse_mass(p.M);
     const SparseMatrix H(p.H);
     lumped_blocks_.resize(std::size_t(p.num_contacts()));

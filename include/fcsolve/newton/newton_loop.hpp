@@ -38,6 +38,12 @@ class NewtonLoop {
  protected:
   explicit NewtonLoop(const NewtonSettings& s) : settings_(s) {}
 
+  /// A problem of another pattern: the last step's duration says nothing
+  /// about its steps. Solves of one pattern (the proximal point's
+  /// subproblems) keep it, so that a subproblem's first step is not started
+  /// past the budget either.
+  void forget_step_time() { step_seconds_ = 0; }
+
   static void check_dimension(int problem_d, int solver_d) {
     if (problem_d != solver_d)
       throw InvalidProblem("spacedim", "problem has d = " + std::to_string(problem_d) +
@@ -81,7 +87,6 @@ class NewtonLoop {
     counters_ = NewtonCounters();
     recent_next_ = 0;
     double kappa = 1;  // adaptive rho factor
-    double step_seconds = 0;  // the last Newton step's duration
     int rho_retries = 0;
     self.set_rho_factor(kappa);
     self.refresh();
@@ -110,11 +115,11 @@ class NewtonLoop {
       if (info_.iterations >= settings_.max_iter) { info_.status = Status::MaxIterations; break; }
       // A step is not started when the last one says it would end past the
       // budget: a factorisation cannot be interrupted once begun.
-      if (clock.seconds() + step_seconds > settings_.max_time) { info_.status = Status::TimeLimit; break; }
+      if (clock.seconds() + step_seconds_ > settings_.max_time) { info_.status = Status::TimeLimit; break; }
       ++info_.iterations;
       const double step_start = clock.seconds();
       const bool moved = self.newton_step();
-      step_seconds = clock.seconds() - step_start;
+      step_seconds_ = clock.seconds() - step_start;
       if (moved) {
         FCSOLVE_NO_MALLOC_BEGIN();
         error = self.error();
@@ -156,6 +161,7 @@ class NewtonLoop {
 
  private:
   std::array<double, 16> recent_{};  // last merits (nonmonotone line search)
+  double step_seconds_ = 0;           // the last Newton step's duration
   int recent_next_ = 0;
 
   /// Fallback sweeps until the error drops by resume_ratio; false if the

@@ -61,6 +61,7 @@ class Newton
     } else {
       jacobian_.compute(p.W);
       system_.compute(jacobian_);
+      this->forget_step_time();
     }
     residual_.compute(p.mu, settings_.rho_strategy, settings_.rho,
                       [this](Index a) { return W().diagonal_block(a); });
