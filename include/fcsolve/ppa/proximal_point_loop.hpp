@@ -131,6 +131,8 @@ class ProximalPointLoop {
         }
       }
       FCSOLVE_NO_MALLOC_END();
+      // the inner solve was given the whole remaining budget: it is spent
+      if (in.status == Status::TimeLimit) return error <= s.tol ? Status::Converged : Status::TimeLimit;
       if (!solved) {
         ++inner_failures_;
         factor *= 10;
