@@ -116,6 +116,15 @@ def _(f):
     replace(f, "fclib_global/M/n", np.array([1 << 30], np.int32))
 
 
+@case("q_stored_in_external_file", "fclib_local/vectors/q")
+def _(f):
+    # Right length, but the data lives outside the file: HDF5 would read it
+    # from /dev/zero (or any file the user can read, gigabytes of it).
+    n = f["fclib_local/vectors/q"].shape[0]
+    del f["fclib_local/vectors/q"]
+    f.create_dataset("fclib_local/vectors/q", shape=(n,), dtype=float, external=[("/dev/zero", 0, 8 * n)])
+
+
 # ---- malformed structure and values
 @case("p_not_starting_at_0", "fclib_local/W/p")
 def _(f):

@@ -25,6 +25,7 @@
 
 #include <H5Cpp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -284,27 +285,38 @@ class Reader {
   /// be stored in full, and within the file, except for up to
   /// kMaxUnstoredBytes that HDF5 fills with the fill value (real files have
   /// them: Siconos creates /solution/r and never writes it); compressed data
-  /// may not expand more than 1000-fold (a decompression bomb).
+  /// may not expand more than 1000-fold (a decompression bomb). The bounds
+  /// use the file's size, not only the storage size its metadata claims: a
+  /// corrupt chunk index can claim any size. Data kept outside the file
+  /// (external storage, virtual datasets) is refused: a 6-kB file could make
+  /// us read gigabytes from /dev/zero or any file the user can read.
   void check_storage(const std::string& name, const H5::DataSet& ds, hssize_t n) const {
     if (n <= 0) return;
     guarded(name, [&] {
+      const H5::DSetCreatPropList dcpl = ds.getCreatePlist();
+      const H5D_layout_t layout = dcpl.getLayout();
+      if (dcpl.getExternalCount() > 0 || layout == H5D_VIRTUAL)
+        fail(name, "data stored outside the file (external or virtual dataset): not supported");
       const std::size_t element = ds.getDataType().getSize();
       if (element == 0 || element > 4096) fail(name, "unsupported element size");
       const double declared = double(n) * double(element);
-      const double stored = double(ds.getStorageSize());
-      const H5::DSetCreatPropList dcpl = ds.getCreatePlist();
+      hsize_t file_bytes = 0;
+      H5Fget_filesize(file_.getId(), &file_bytes);
+      const double file_size = double(file_bytes);
+      const double stored = std::min(double(ds.getStorageSize()), file_size);
       const bool filtered = dcpl.getNfilters() > 0;
       const bool variable = ds.getDataType().isVariableStr();
       if (!variable && !filtered && stored < declared && declared > kMaxUnstoredBytes)
         fail(name, "declares " + std::to_string(n) + " entries but the file stores only " +
                        std::to_string(static_cast<long long>(stored)) + " bytes of them");
+      if (!variable && !filtered && declared > file_size + kMaxUnstoredBytes)
+        fail(name, "declares " + std::to_string(n) + " entries, more than the file's " +
+                       std::to_string(file_bytes) + " bytes hold");
       if (filtered && declared > 1000.0 * stored + 1e6)
         fail(name, "compressed data expands more than 1000-fold");
-      if (dcpl.getLayout() == H5D_CONTIGUOUS && !variable) {
+      if (layout == H5D_CONTIGUOUS && !variable) {
         const haddr_t offset = H5Dget_offset(ds.getId());
-        hsize_t file_size = 0;
-        H5Fget_filesize(file_.getId(), &file_size);
-        if (offset != HADDR_UNDEF && double(offset) + declared > double(file_size))
+        if (offset != HADDR_UNDEF && double(offset) + declared > file_size)
           fail(name, "data extends past the end of the file (truncated?)");
       }
       return 0;
