@@ -232,6 +232,40 @@ TEST_CASE("sliding equation: the quartic's roots are the zeros of f", "[local]")
   }
 }
 
+TEST_CASE("fast enumerative: Newton ending on an anti-parallel root is restarted from -t",
+          "[local]") {
+  // A corner of a sliding cube (bench_nsgs nsgs-small/cube-4) in mid-solve:
+  // Newton from the warm start's direction settles on a zero of f where
+  // u_T points against t, which is not a solution.
+  using E = local::Enumerative<Coulomb3D>;
+  Eigen::Matrix3d W;
+  W << 4, -1.5, 1.5, -1.5, 4, 1.5, 1.5, 1.5, 4;
+  const Eigen::Vector3d q(-0.053054385457392675, 0.052485170951347616, -0.020454054322373131);
+  const Eigen::Vector3d warm(0.016249893249819278, -0.0031035756332611583, -0.0037594056771482623);
+  const double mu = 0.3;
+  const local::SlidingEquation f(W, q, mu);
+  local::SlidingEquation::Vec2 t = -warm.tail<2>().normalized();
+  REQUIRE(f.newton(t, 30));
+  const Eigen::Vector3d spurious = local::SlidingEquation::reaction(W, q, mu, t);
+  const Eigen::Vector3d u = W * spurious + q;
+  CHECK(u.tail<2>().dot(t) < 0);
+  CHECK(residual<Coulomb3D>(W, q, mu, spurious) > 1e-3 * q.norm());
+  // from the opposite direction it reaches the solution
+  t = -t;
+  REQUIRE(f.newton(t, 30));
+  CHECK(residual<Coulomb3D>(W, q, mu, local::SlidingEquation::reaction(W, q, mu, t)) <= 1e-15);
+  // the fast solve returns that slide, the reference's only solution
+  E::Settings s, ref;
+  ref.newton_first = false;
+  const E::Solutions all = E::enumerate(E::prepare(W, mu, ref), q, ref);
+  REQUIRE(all.count == 1);
+  Eigen::Vector3d r = warm;
+  const local::LocalResult res = E::solve(E::prepare(W, mu, s), q, r, s);
+  CHECK(res.converged);
+  CHECK(res.kind == local::ContactCase::Slide);
+  CHECK((r - all.r[0]).norm() <= 1e-14);
+}
+
 TEST_CASE("local solvers: closed-form one-contact cases, 3D", "[local]") {
   check_closed_form_3d<local::Projection>("projection");
   check_closed_form_3d<local::ProjectionIterative>("projection-iterative");

@@ -163,7 +163,12 @@ struct Enumerative {
 
   /// 3D sliding by Newton on the direction, started from the warm start's
   /// sliding direction -r_T / ||r_T|| (or, failing that, from the stick
-  /// candidate's). Accepts only a verified solution.
+  /// candidate's). Accepts only a verified solution. f(t) = 0 also holds
+  /// where u_T is anti-parallel to t (u_T . t < 0, not a solution); when
+  /// Newton settles on such a root, or does not settle, it is started once
+  /// more from the opposite direction -t: a Newton run costs a few hundred
+  /// instructions, the quartic fallback tens of thousands (callgrind,
+  /// bench_nsgs nsgs-small/cube-4: one fallback a solve was a quarter of it).
   template <int D = dim, std::enable_if_t<D == 3, int> = 0>
   static bool slide_newton(const Data& d, const Vec& q, const Vec& stick, const Settings& s,
                            Vec& r, LocalResult& res) {
@@ -174,11 +179,23 @@ struct Enumerative {
     const double norm = t.norm();
     t = norm > 0 ? Vec2(t / norm) : Vec2(1, 0);
     const SlidingEquation f(d.W, q, d.mu);
+    if (!slide_from(f, d, q, s, t, r)) {
+      t = -t;  // t: where the first Newton run ended
+      if (!slide_from(f, d, q, s, t, r)) return false;
+    }
+    res.kind = ContactCase::Slide;
+    return true;
+  }
+
+  /// Newton on the sliding direction from t (left where Newton ended); true
+  /// (and r set) if it ends on a verified solution.
+  template <int D = dim, std::enable_if_t<D == 3, int> = 0>
+  static bool slide_from(const SlidingEquation& f, const Data& d, const Vec& q, const Settings& s,
+                         SlidingEquation::Vec2& t, Vec& r) {
     if (!f.newton(t, s.newton_iter)) return false;
     const Vec candidate = SlidingEquation::reaction(d.W, q, d.mu, t);
     if (!is_solution(d, q, candidate, s)) return false;
     r = candidate;
-    res.kind = ContactCase::Slide;
     return true;
   }
 };

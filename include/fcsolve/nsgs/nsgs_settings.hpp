@@ -56,6 +56,11 @@ struct NsgsSettings : SolverSettings {
   /// stop moving early: on the Capsules problems this halves the time.
   int freezing = 10;
   double freeze_tol = 1e-14;
+  /// Aitken extrapolation when three successive sweeps shrink the change
+  /// by one factor (nsgs_solver.hpp, Extrapolation), kept only if its full
+  /// FCLIB error is below the current estimate: fewer sweeps on a few
+  /// strongly coupled contacts.
+  bool extrapolate = true;
   /// Local (one-contact) solver settings.
   LocalSettings local;
 };

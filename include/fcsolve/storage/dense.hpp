@@ -38,9 +38,15 @@ class DenseStorage {
   void multiply(const Eigen::Ref<const VectorType>& x, Eigen::Ref<VectorType> y) const {
     y.noalias() = W_ * x;
   }
-  /// (W x)^a = sum_b W^{ab} x^b
+  /// (W x)^a = sum_b W^{ab} x^b, block by block: the fixed-size D x D
+  /// products unroll, where the D x n row product ran Eigen's dynamic-length
+  /// dot products (about 50 more instructions a contact visit on 3 contacts,
+  /// 6% of the solve: callgrind, bench_nsgs nsgs-small).
   BlockVector block_row_product(Index a, const Eigen::Ref<const VectorType>& x) const {
-    return W_.template middleRows<D>(a * D) * x;
+    BlockVector y = BlockVector::Zero();
+    for (Index b = 0; b < num_blocks(); ++b)
+      y.noalias() += W_.template block<D, D>(a * D, b * D) * x.template segment<D>(b * D);
+    return y;
   }
   /// y += W^{.a} dx (column block a times dx)
   void add_block_column(Index a, const BlockVector& dx, Eigen::Ref<VectorType> y) const {
