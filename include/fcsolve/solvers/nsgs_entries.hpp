@@ -1,6 +1,6 @@
 // Catalogue entries of the NSGS / PSOR family (solvers/registry.hpp): one
 // entry per local solver, all with the NSGS knobs (omega, ordering, seed,
-// threads, error_every, freezing) plus the local solver's own.
+// threads, error_every, freezing, extrapolate) plus the local solver's own.
 //
 // The storage is chosen at run time (solvers/dispatch.hpp): DenseStorage up
 // to kDenseStorageMaxContacts contacts, BlockSparseStorage beyond; the cone
@@ -45,6 +45,9 @@ inline std::vector<SettingSpec> common_settings(double omega) {
       integer_setting("freezing", d.freezing,
                       "skip a contact for k sweeps once its local solution stops moving (0: off)",
                       0, 1e9),
+      boolean_setting("extrapolate", d.extrapolate,
+                      "Aitken extrapolation when sweeps converge linearly (kept only if it "
+                      "lowers the FCLIB error)"),
   };
 }
 
@@ -61,6 +64,7 @@ void apply_common(const SolveRequest& req, Settings& s) {
   s.stall_sweeps = static_cast<int>(v.integer("stall_sweeps"));
   s.error_every = static_cast<int>(v.integer("error_every"));
   s.freezing = static_cast<int>(v.integer("freezing"));
+  s.extrapolate = v.boolean("extrapolate");
 }
 
 template <class Solver, class Configure>
