@@ -232,6 +232,9 @@ class Nsgs {
       if (full) {
         const Status verdict = judge_full_error(r, error, sw, change, ratio, sweep_no, progress);
         if (verdict != Status::MaxIterations) {
+          // the sweep that ends the solve is recorded too: a solve that
+          // converges on its first sweep (uncoupled contacts) has a history
+          if (s.record_history) info_.history.push_back(error);
           status = verdict;
           break;
         }
@@ -247,6 +250,7 @@ class Nsgs {
           exact = true;
           keep_if_best(r, error);
           if (error <= s.tol) {
+            if (s.record_history) info_.history.push_back(error);
             status = Status::Converged;
             break;
           }
