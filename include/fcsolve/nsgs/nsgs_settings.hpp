@@ -58,8 +58,8 @@ struct NsgsSettings : SolverSettings {
   double freeze_tol = 1e-14;
   /// Aitken extrapolation when three successive sweeps shrink the change
   /// by one factor (nsgs_solver.hpp, Extrapolation), kept only if its full
-  /// FCLIB error is below the current estimate: fewer sweeps on a few
-  /// strongly coupled contacts.
+  /// FCLIB error is below rho times the current estimate (it beats the
+  /// sweep it costs): fewer sweeps on a few strongly coupled contacts.
   bool extrapolate = true;
   /// Local (one-contact) solver settings.
   LocalSettings local;

@@ -27,8 +27,8 @@
 // When three successive sweeps shrink the change ||dr|| by one factor rho
 // (linear convergence along one mode, typical of a few strongly coupled
 // contacts), r is extrapolated by Aitken's rule r + rho / (1 - rho) dr
-// (Aitken 1926); the step is kept only if its full error is below the
-// current error estimate (settings().extrapolate; Extrapolation below).
+// (Aitken 1926); the step is kept only if its full error is below rho
+// times the current error estimate (settings().extrapolate; Extrapolation below).
 //
 // Success is declared only on the full FCLIB error (problem/error.hpp) of the
 // returned r: error = ||F_nat(r)|| / ||q|| <= tol. When the solve fails
