@@ -26,11 +26,10 @@ namespace detail {
 
 /// The Alart-Curnier (RadiusFromAugmented = true) or Jean-Moreau (false)
 /// function; the named structs below derive from it.
-template <class Cone, bool RadiusFromAugmented>
+template <class Cone_, bool RadiusFromAugmented>
 struct AugmentedLagrangianFunction
-    : OneContactFunction<AugmentedLagrangianFunction<Cone, RadiusFromAugmented>, Cone> {
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
+    : OneContactFunction<AugmentedLagrangianFunction<Cone_, RadiusFromAugmented>, Cone_> {
+  FCSOLVE_CONE_TYPES(Cone_);
 
   static void evaluate(const Vec& r, const Vec& u, double mu, const Vec& rho, Vec& G, Mat* A,
                        Mat* B) {

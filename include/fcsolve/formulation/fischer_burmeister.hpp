@@ -77,11 +77,9 @@ SmallVector<D> lorentz_fischer_burmeister(const SmallVector<D>& x, const SmallVe
 
 /// The SOCCP Fischer-Burmeister function and its Jacobian element, one contact
 /// (interface: one_contact_function.hpp).
-template <class Cone>
-struct FischerBurmeisterFunction : OneContactFunction<FischerBurmeisterFunction<Cone>, Cone> {
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
-  static constexpr const char* name = "fischer-burmeister";
+template <class Cone_>
+struct FischerBurmeisterFunction : OneContactFunction<FischerBurmeisterFunction<Cone_>, Cone_> {
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "fischer-burmeister");
 
   static void evaluate(const Vec& r, const Vec& u, double mu, const Vec& rho, Vec& G, Mat* A,
                        Mat* B) {

@@ -16,23 +16,20 @@ namespace fcsolve {
 
 /// The natural-map function and its Jacobian element, one contact
 /// (interface: one_contact_function.hpp).
-template <class Cone>
-struct NaturalMapFunction : OneContactFunction<NaturalMapFunction<Cone>, Cone> {
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
-  static constexpr const char* name = "natural-map";
+template <class Cone_>
+struct NaturalMapFunction : OneContactFunction<NaturalMapFunction<Cone_>, Cone_> {
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "natural-map");
 
   static void evaluate(const Vec& r, const Vec& u, double mu, const Vec& rho, Vec& G, Mat* A,
                        Mat* B) {
-    constexpr int D = Cone::dim;
     const Vec z = r - rho[0] * Cone::modified_velocity(u, mu);
     G = r - Cone::project(z, mu);
     if (!A) return;
     Mat J;
-    if constexpr (D == 1) J(0, 0) = z[0] > 0 ? 1.0 : 0.0;
-    else J = coulomb_projection_jacobian<D>(z, mu);
+    if constexpr (dim == 1) J(0, 0) = z[0] > 0 ? 1.0 : 0.0;
+    else J = coulomb_projection_jacobian<dim>(z, mu);
     *B = Mat::Identity() - J;
-    A->noalias() = rho[0] * J * modified_velocity_jacobian<D>(u, mu);
+    A->noalias() = rho[0] * J * modified_velocity_jacobian<dim>(u, mu);
   }
 };
 

@@ -9,17 +9,16 @@
 // provides evaluate(r, u, mu, rho, G, A*, B*) (A, B null: value only).
 #pragma once
 
-#include <fcsolve/core/types.hpp>
+#include <fcsolve/cone/cone_types.hpp>
 
 #include <type_traits>
 #include <utility>
 
 namespace fcsolve {
 
-template <class Derived, class Cone>
+template <class Derived, class Cone_>
 struct OneContactFunction {
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
+  FCSOLVE_CONE_TYPES(Cone_);
 
   static Vec value(const Vec& r, const Vec& u, double mu, const Vec& rho) {
     Vec G;

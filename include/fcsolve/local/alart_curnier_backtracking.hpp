@@ -27,12 +27,8 @@ namespace local {
 
 template <class Cone_>
 struct AlartCurnierBacktracking {
-  using Cone = Cone_;
-  static constexpr int dim = Cone::dim;
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<dim>;
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "alart-curnier-backtracking");
   using Function = AlartCurnierFunction<Cone>;
-  static constexpr const char* name = "alart-curnier-backtracking";
 
   struct Settings {
     int max_iter = 10;       ///< Newton steps

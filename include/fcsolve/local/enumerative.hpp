@@ -34,11 +34,7 @@ namespace local {
 
 template <class Cone_>
 struct Enumerative {
-  using Cone = Cone_;
-  static constexpr int dim = Cone::dim;
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<dim>;
-  static constexpr const char* name = "enumerative";
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "enumerative");
   static constexpr int kMaxSolutions = 8;
 
   struct Settings {

@@ -19,12 +19,9 @@ namespace local {
 
 template <class Cone_>
 struct Hybrid {
-  using Cone = Cone_;
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "hybrid");
   using NewtonSolver = AlartCurnierNewton<Cone>;
   using ProjectionSolver = ProjectionIterative<Cone>;
-  static constexpr const char* name = "hybrid";
 
   struct Settings {
     typename NewtonSolver::Settings newton;

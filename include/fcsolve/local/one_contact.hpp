@@ -16,6 +16,7 @@
 #pragma once
 
 #include <fcsolve/cone/cones.hpp>
+#include <fcsolve/cone/cone_types.hpp>
 #include <fcsolve/core/enum_names.hpp>
 #include <fcsolve/problem/error.hpp>
 

@@ -19,10 +19,7 @@ namespace local {
 
 template <class Cone_>
 struct Projection {
-  using Cone = Cone_;
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<Cone::dim>;
-  static constexpr const char* name = "projection";
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "projection");
 
   struct Settings {
     double rho_scale = 1.0;  ///< rho = rho_scale / lambda_max(sym W^aa)

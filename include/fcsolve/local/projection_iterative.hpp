@@ -38,11 +38,7 @@ namespace local {
 
 template <class Cone_>
 struct ProjectionIterative {
-  using Cone = Cone_;
-  static constexpr int dim = Cone::dim;
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<dim>;
-  static constexpr const char* name = "projection-iterative";
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, "projection-iterative");
 
   struct Settings {
     double tol = 1e-12;         ///< local natural-map residual / ||q||

@@ -28,11 +28,7 @@ namespace local {
 
 template <class Cone_, class Function>
 struct SemismoothNewton {
-  using Cone = Cone_;
-  static constexpr int dim = Cone::dim;
-  using Vec = typename Cone::Vec;
-  using Mat = SmallMatrix<dim>;
-  static constexpr const char* name = Function::name;
+  FCSOLVE_ONE_CONTACT_POLICY(Cone_, Function::name);
 
   struct Settings {
     double tol = 1e-14;     ///< ||G|| relative to max(||r||, rho_N ||q||)

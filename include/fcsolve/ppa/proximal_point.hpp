@@ -28,6 +28,7 @@
 #include <fcsolve/problem/validate.hpp>
 #include <fcsolve/storage/storage.hpp>
 
+#include <initializer_list>
 #include <optional>
 
 namespace fcsolve {
@@ -51,11 +52,7 @@ class ProximalPoint : public ProximalPointLoop<ProximalPoint<Cone, Inner>, Inner
     problem_.emplace(validated(p, d));
     error_.emplace(p);
     proximal_.compute(p);
-    const Index m = p.size();
-    r_.resize(m);
-    trial_.resize(m);
-    u_.resize(m);
-    best_.resize(m);
+    for (Vector* v : {&r_, &trial_, &u_, &best_}) v->resize(p.size());
     info_ = SolverInfo();
     info_.setup_seconds = clock.seconds();
     return *this;
@@ -64,8 +61,8 @@ class ProximalPoint : public ProximalPointLoop<ProximalPoint<Cone, Inner>, Inner
   /// r: warm start in, solution out (the best iterate if the solve fails);
   /// u = W r + q on return.
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
-    const Index m = problem_ ? problem_->size() : 0;
-    fcsolve::check_solve_arguments("ProximalPoint", problem_.has_value(), r, m, u, m, "u");
+    fcsolve::check_solve_arguments("ProximalPoint", problem_.has_value(), r, size(), u, size(),
+                                   "u");
     Stopwatch clock;
     r_ = r;
     double error = (*error_)(r_);
@@ -83,6 +80,7 @@ class ProximalPoint : public ProximalPointLoop<ProximalPoint<Cone, Inner>, Inner
   double alpha_unit() const { return proximal_.diagonal_scale(); }
   double outer_scale() const { return error_->scale(); }
   Index num_contacts() const { return problem_->num_contacts(); }
+  Index size() const { return problem_ ? problem_->size() : 0; }
   double pose_subproblem(double alpha) {
     proximal_.set_alpha(alpha);
     FCSOLVE_NO_MALLOC_BEGIN();

@@ -4,7 +4,7 @@
 // touches only the blocks of that row, without allocation.
 #pragma once
 
-#include <fcsolve/core/types.hpp>
+#include <fcsolve/storage/storage_types.hpp>
 
 #include <vector>
 
@@ -13,12 +13,7 @@ namespace fcsolve {
 template <int D, class Scalar_ = double>
 class BlockSparseStorage {
  public:
-  using Scalar = Scalar_;
-  static constexpr int block_dim = D;
-  static constexpr bool row_access = true;
-  using Block = SmallMatrix<D, Scalar>;
-  using BlockVector = SmallVector<D, Scalar>;
-  using VectorType = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  FCSOLVE_STORAGE_TYPES(D, Scalar_, true);
 
   BlockSparseStorage() = default;
   template <class Sparse>

@@ -2,7 +2,7 @@
 // arrays at all. Row-major, so a block row W^{a.} is d contiguous rows.
 #pragma once
 
-#include <fcsolve/core/types.hpp>
+#include <fcsolve/storage/storage_types.hpp>
 
 #include <vector>
 
@@ -11,12 +11,7 @@ namespace fcsolve {
 template <int D, class Scalar_ = double>
 class DenseStorage {
  public:
-  using Scalar = Scalar_;
-  static constexpr int block_dim = D;
-  static constexpr bool row_access = true;  ///< provides block_row_product
-  using Block = SmallMatrix<D, Scalar>;
-  using BlockVector = SmallVector<D, Scalar>;
-  using VectorType = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  FCSOLVE_STORAGE_TYPES(D, Scalar_, true);  // row_access: provides block_row_product
 
   DenseStorage() = default;
   template <class Sparse>

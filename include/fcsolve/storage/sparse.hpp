@@ -4,7 +4,7 @@
 // instead of recomputing block rows.
 #pragma once
 
-#include <fcsolve/core/types.hpp>
+#include <fcsolve/storage/storage_types.hpp>
 
 #include <optional>
 #include <vector>
@@ -14,12 +14,7 @@ namespace fcsolve {
 template <int D>
 class SparseStorage {
  public:
-  using Scalar = double;
-  static constexpr int block_dim = D;
-  static constexpr bool row_access = false;  ///< provides add_block_column only
-  using Block = SmallMatrix<D>;
-  using BlockVector = SmallVector<D>;
-  using VectorType = Vector;
+  FCSOLVE_STORAGE_TYPES(D, double, false);  // no row access: provides add_block_column only
 
   SparseStorage() = default;
   /// Views W: it must outlive this storage (as with Eigen's solvers).
