@@ -180,10 +180,7 @@ class Nsgs {
     Stopwatch clock;
     check_solve_arguments(r, u);
     const Settings& s = settings_;
-    const double setup = info_.setup_seconds;
-    info_ = SolverInfo();
-    info_.setup_seconds = setup;
-    if (s.record_history) info_.history.reserve(std::size_t(std::min(s.max_iter, 100000)) + 1);
+    reset_info();
 
     const ContactOrdering ordering = s.ordering;
     start_ordering(r);
@@ -203,10 +200,7 @@ class Nsgs {
     Status status = Status::MaxIterations;
     for (int sweep_no = 1; sweep_no <= s.max_iter; ++sweep_no) {
       FCSOLVE_NO_MALLOC_BEGIN();
-      if (progress.reshuffle && ordering == ContactOrdering::Coloured)
-        std::shuffle(colour_order_.begin(), colour_order_.end(), rng_);
-      else if (progress.reshuffle)
-        std::shuffle(order_.begin(), order_.end(), rng_);
+      if (progress.reshuffle) reshuffle(ordering);
       const bool armed = s.extrapolate && extrapolation.armed();
       if (armed) previous_ = r;
       const SweepResult sw = ordering == ContactOrdering::Coloured ? coloured_sweep(r) : ordered_sweep(r);
@@ -238,23 +232,11 @@ class Nsgs {
           status = verdict;
           break;
         }
-      } else if (armed && extrapolation.armed() && rho > 0) {
-        // three sweeps shrank the change by one factor rho: try the limit
-        FCSOLVE_NO_MALLOC_BEGIN();
-        const bool taken = extrapolate(r, rho, estimate, error);
-        FCSOLVE_NO_MALLOC_END();
-        if (taken) extrapolation.restart();
-        else extrapolation.back_off();
-        if (taken) {
-          estimate = error;
-          exact = true;
-          keep_if_best(r, error);
-          if (error <= s.tol) {
-            if (s.record_history) info_.history.push_back(error);
-            status = Status::Converged;
-            break;
-          }
-        }
+      } else if (armed && extrapolation.armed() && rho > 0 &&
+                 aitken_step_converges(r, rho, extrapolation, estimate, exact, error)) {
+        if (s.record_history) info_.history.push_back(error);
+        status = Status::Converged;
+        break;
       }
       if (s.record_history) info_.history.push_back(estimate);
       if (s.callback &&
@@ -272,6 +254,21 @@ class Nsgs {
   }
 
  private:
+  /// Resets info() for a new solve; compute()'s setup time stays.
+  void reset_info() {
+    const double setup = info_.setup_seconds;
+    info_ = SolverInfo();
+    info_.setup_seconds = setup;
+    if (settings_.record_history)
+      info_.history.reserve(std::size_t(std::min(settings_.max_iter, 100000)) + 1);
+  }
+
+  /// A new random order of the contacts (or of the colours) for the next sweep.
+  void reshuffle(ContactOrdering ordering) {
+    if (ordering == ContactOrdering::Coloured) std::shuffle(colour_order_.begin(), colour_order_.end(), rng_);
+    else std::shuffle(order_.begin(), order_.end(), rng_);
+  }
+
   struct SweepResult {
     double change2 = 0;  ///< ||r_new - r_old||^2 over the visited contacts
     Index skipped = 0;   ///< frozen contacts not visited
@@ -419,6 +416,25 @@ class Nsgs {
       if (settings_.ordering == ContactOrdering::Coloured) slots_.gather(*colouring_, r);
     }
     return true;
+  }
+
+  /// Three sweeps shrank the change by one factor rho: tries the Aitken limit
+  /// (extrapolate()). When it is taken, estimate and error become its full
+  /// error (exact); true when that error meets the tolerance.
+  bool aitken_step_converges(Eigen::Ref<Vector> r, double rho, Extrapolation& extrapolation,
+                             double& estimate, bool& exact, double& error) {
+    FCSOLVE_NO_MALLOC_BEGIN();
+    const bool taken = extrapolate(r, rho, estimate, error);
+    FCSOLVE_NO_MALLOC_END();
+    if (!taken) {
+      extrapolation.back_off();
+      return false;
+    }
+    extrapolation.restart();
+    estimate = error;
+    exact = true;
+    keep_if_best(r, error);
+    return error <= settings_.tol;
   }
 
   /// Stall detection across full error evaluations.
