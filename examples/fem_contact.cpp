@@ -34,66 +34,36 @@
 #endif
 
 #include <cstdio>
-#include <iostream>
 #include <string>
 #include <vector>
 
 namespace {
 
-using fcsolve::scenes::ContactLaw;
-
-struct Parameters {
-  long nx = 8, ny = 8, nz = 4, steps = 100;
+struct Parameters : stepping::SteppingParameters {
+  long nx = 8, ny = 8, nz = 4;
   double size_x = 0.4, size_y = 0.4, size_z = 0.2;  // m
-  double mu = 0.5, theta = 0.5, h = 1e-3, tol = 1e-8;
   double young = 1e6, poisson = 0.3;  // Pa, -
   double pressure = 5e4, shear = 0.45;  // Pa on the top face; shear traction = shear * pressure
   double initial_gap = 1e-4;  // m
   bool consistent_mass = false;
-  long max_iter = 200;
-  ContactLaw law;
-  bool warm_start = true, quiet = false;
-  long dump_step = -1;
-  std::string dump_file, dump_local_file;
 };
 
 Parameters parse(int argc, char** argv) {
   stepping::Options o(argc, argv);
   Parameters p;
+  p.read(o, /*with_restitution=*/false);
   p.nx = o.integer("nx", p.nx);
   p.ny = o.integer("ny", p.ny);
   p.nz = o.integer("nz", p.nz);
-  p.steps = o.integer("steps", p.steps);
-  p.mu = o.real("mu", p.mu);
-  p.theta = o.real("theta", p.theta);
-  p.h = o.real("dt", p.h);
   p.young = o.real("young", p.young);
   p.poisson = o.real("poisson", p.poisson);
   p.pressure = o.real("pressure", p.pressure);
   p.shear = o.real("shear", p.shear);
   p.consistent_mass = o.flag("consistent-mass");
-  p.tol = o.real("tol", p.tol);
-  p.max_iter = o.integer("max-iter", p.max_iter);
-  p.law.beta = o.real("beta", p.law.beta);
-  p.law.slop = o.real("slop", p.law.slop);
-  p.warm_start = !o.flag("no-warm-start");
-  p.quiet = o.flag("quiet");
-  const auto dump = o.values("dump", 2);
-  if (!dump.empty()) {
-    p.dump_step = stepping::Options::to_integer("dump", dump[0]);
-    p.dump_file = dump[1];
-  }
-  p.dump_local_file = o.text("dump-local", "");
   o.expect_all_used();
-  if (p.nx < 1 || p.ny < 1 || p.nz < 1 || p.steps < 1 || p.max_iter < 1)
-    throw std::invalid_argument("--nx, --ny, --nz, --steps and --max-iter must be positive");
-  if (!(p.theta >= 0.5 && p.theta <= 1.0)) throw std::invalid_argument("--theta must be in [1/2, 1]");
-  if (!(p.h > 0) || !(p.tol > 0) || !(p.mu > 0) || !(p.young > 0) || !(p.poisson > -1 && p.poisson < 0.5))
-    throw std::invalid_argument("--dt, --tol, --mu, --young must be positive, --poisson in (-1, 1/2)");
-  if (!p.dump_local_file.empty() && p.dump_step < 0) throw std::invalid_argument("--dump-local needs --dump STEP FILE");
-#ifndef FCSOLVE_EXAMPLES_WITH_FCLIB
-  if (p.dump_step >= 0) throw std::invalid_argument("--dump needs HDF5: build with the fcsolve::fclib target");
-#endif
+  if (p.nx < 1 || p.ny < 1 || p.nz < 1) throw std::invalid_argument("--nx, --ny and --nz must be positive");
+  if (!(p.mu > 0) || !(p.young > 0) || !(p.poisson > -1 && p.poisson < 0.5))
+    throw std::invalid_argument("--mu and --young must be positive, --poisson in (-1, 1/2)");
   return p;
 }
 
@@ -120,61 +90,32 @@ int run(const Parameters& p) {
               p.young, p.poisson, p.pressure, p.shear, p.consistent_mass ? "consistent" : "lumped",
               p.law.beta, p.law.slop, int(p.warm_start));
   fcsolve::scenes::ElasticStepper stepper(scene, stepping::step_settings(p));
-  stepping::StepLog log(p.quiet);
-  bool dumped = false;
-  for (long step = 1; step <= p.steps; ++step) {
-    const fcsolve::scenes::StepReport& s = stepper.step();
-    log.step(s);
-    if (s.contacts == 0) continue;
+  return stepping::run_steps("fem_contact", stepper, p.steps, p.quiet, p.dump.step,
+                             [&](long step, long contacts) {
 #ifdef FCSOLVE_EXAMPLES_WITH_FCLIB
-    if (step == p.dump_step) {
-      fcsolve::GlobalProblem problem = stepper.global();
-      problem.text.title = "fem_contact step " + std::to_string(step);
-      problem.text.description =
-          "fcsolve examples/fem_contact.cpp: elastic block (trilinear hexahedra, " +
-          std::string(p.consistent_mass ? "consistent" : "lumped") + " mass) pressed on a rigid plane; nx=" +
-          std::to_string(p.nx) + " ny=" + std::to_string(p.ny) + " nz=" + std::to_string(p.nz) +
-          " mu=" + std::to_string(p.mu) + " theta=" + std::to_string(p.theta) + " dt=" +
-          std::to_string(p.h) + " young=" + std::to_string(p.young) + " poisson=" +
-          std::to_string(p.poisson) + " pressure=" + std::to_string(p.pressure) + " shear=" +
-          std::to_string(p.shear) + " step=" + std::to_string(step);
-      problem.text.math_info =
-          "Moreau-Jean step: M_hat v+ = f + H r, M_hat = M + h^2 theta^2 K, "
-          "f = M v - h K (x + h theta (1-theta) v) + h f_ext, u = H^T v+ + w, "
-          "w_N = beta min(gap+slop,0)/h; solution: GlobalNewton (Alart-Curnier)";
-      stepping::dump_global(p.dump_file, problem, stepper.reactions(), stepper.velocity_after());
-      if (!p.dump_local_file.empty()) {
-        fcsolve::LocalProblem local = fcsolve::GlobalReduction<fcsolve::DefaultBackend>(problem).local();
-        local.text = problem.text;
-        stepping::dump_local(p.dump_local_file, local, stepper.reactions());
-      }
-      std::printf("# dumped step %ld (%ld contacts) to %s\n", step, s.contacts, p.dump_file.c_str());
-      dumped = true;
-    }
+    fcsolve::GlobalProblem problem = stepper.global();
+    problem.text.title = "fem_contact step " + std::to_string(step);
+    problem.text.description =
+        "fcsolve examples/fem_contact.cpp: elastic block (trilinear hexahedra, " +
+        std::string(p.consistent_mass ? "consistent" : "lumped") + " mass) pressed on a rigid plane; nx=" +
+        std::to_string(p.nx) + " ny=" + std::to_string(p.ny) + " nz=" + std::to_string(p.nz) +
+        " mu=" + std::to_string(p.mu) + " theta=" + std::to_string(p.theta) + " dt=" +
+        std::to_string(p.h) + " young=" + std::to_string(p.young) + " poisson=" +
+        std::to_string(p.poisson) + " pressure=" + std::to_string(p.pressure) + " shear=" +
+        std::to_string(p.shear) + " step=" + std::to_string(step);
+    problem.text.math_info =
+        "Moreau-Jean step: M_hat v+ = f + H r, M_hat = M + h^2 theta^2 K, "
+        "f = M v - h K (x + h theta (1-theta) v) + h f_ext, u = H^T v+ + w, "
+        "w_N = beta min(gap+slop,0)/h; solution: GlobalNewton (Alart-Curnier)";
+    const auto reduce = [&] { return fcsolve::GlobalReduction<fcsolve::DefaultBackend>(problem).local(); };
+    stepping::dump_step(p.dump.file, p.dump.local_file, problem, reduce,
+                        stepper.reactions(), stepper.velocity_after(), step, contacts);
+#else
+    (void)step, (void)contacts;  // --dump is refused without HDF5 (stepping/options.hpp)
 #endif
-  }
-  log.summary();
-  if (p.dump_step >= 0 && !dumped) {
-    std::cerr << "fem_contact: nothing dumped: step " << p.dump_step << " has no contact or is not simulated\n";
-    return 1;
-  }
-  return log.all_converged() ? 0 : 1;
+  });
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Parameters p;
-  try {
-    p = parse(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "fem_contact: " << e.what() << "\n";
-    return 2;
-  }
-  try {
-    return run(p);
-  } catch (const std::exception& e) {
-    std::cerr << "fem_contact: " << e.what() << "\n";
-    return 3;
-  }
-}
+int main(int argc, char** argv) { return stepping::example_main("fem_contact", argc, argv, parse, run); }

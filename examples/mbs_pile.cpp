@@ -26,54 +26,28 @@
 #endif
 
 #include <cstdio>
-#include <iostream>
 #include <string>
 
 namespace {
 
-using fcsolve::scenes::ContactLaw;
-
-struct Parameters {
-  Parameters() { law.slop = 0.005 * 0.05; }  // 0.5 % of R0
-  long spheres = 200, steps = 200, seed = 1;
-  double mu = 0.5, theta = 0.5, h = 2e-3, tol = 1e-8;
-  long max_iter = 10000;
-  ContactLaw law;
-  bool warm_start = true, quiet = false;
-  long dump_step = -1;
-  std::string dump_file, dump_local_file;
+struct Parameters : stepping::SteppingParameters {
+  Parameters() {
+    steps = 200;
+    max_iter = 10000;
+    h = 2e-3;
+    law.slop = 0.005 * 0.05;  // 0.5 % of R0
+  }
+  long spheres = 200, seed = 1;
 };
 
 Parameters parse(int argc, char** argv) {
   stepping::Options o(argc, argv);
   Parameters p;
+  p.read(o, /*with_restitution=*/true);
   p.spheres = o.integer("spheres", p.spheres);
-  p.steps = o.integer("steps", p.steps);
   p.seed = o.integer("seed", p.seed);
-  p.mu = o.real("mu", p.mu);
-  p.theta = o.real("theta", p.theta);
-  p.h = o.real("dt", p.h);
-  p.tol = o.real("tol", p.tol);
-  p.max_iter = o.integer("max-iter", p.max_iter);
-  p.law.restitution = o.real("restitution", p.law.restitution);
-  p.law.beta = o.real("beta", p.law.beta);
-  p.law.slop = o.real("slop", p.law.slop);
-  p.warm_start = !o.flag("no-warm-start");
-  p.quiet = o.flag("quiet");
-  const auto dump = o.values("dump", 2);
-  if (!dump.empty()) {
-    p.dump_step = stepping::Options::to_integer("dump", dump[0]);
-    p.dump_file = dump[1];
-  }
-  p.dump_local_file = o.text("dump-local", "");
   o.expect_all_used();
-  if (p.spheres < 1 || p.steps < 1 || p.max_iter < 1) throw std::invalid_argument("--spheres, --steps and --max-iter must be positive");
-  if (!(p.theta >= 0.5 && p.theta <= 1.0)) throw std::invalid_argument("--theta must be in [1/2, 1]");
-  if (!(p.h > 0) || !(p.tol > 0) || !(p.mu >= 0)) throw std::invalid_argument("--dt and --tol must be positive, --mu not negative");
-  if (!p.dump_local_file.empty() && p.dump_step < 0) throw std::invalid_argument("--dump-local needs --dump STEP FILE");
-#ifndef FCSOLVE_EXAMPLES_WITH_FCLIB
-  if (p.dump_step >= 0) throw std::invalid_argument("--dump needs HDF5: build with the fcsolve::fclib target");
-#endif
+  if (p.spheres < 1) throw std::invalid_argument("--spheres must be positive");
   return p;
 }
 
@@ -87,59 +61,29 @@ int run(const Parameters& p) {
               p.spheres, p.steps, p.seed, p.mu, p.theta, p.h, p.tol, pile.box(), p.law.restitution,
               p.law.beta, p.law.slop, int(p.warm_start));
   fcsolve::scenes::RigidStepper<fcsolve::scenes::SpherePile> stepper(pile, stepping::step_settings(p));
-  stepping::StepLog log(p.quiet);
-  bool dumped = false;
-  for (long step = 1; step <= p.steps; ++step) {
-    const fcsolve::scenes::StepReport& s = stepper.step();
-    log.step(s);
-    if (s.contacts == 0) continue;
+  return stepping::run_steps("mbs_pile", stepper, p.steps, p.quiet, p.dump.step,
+                             [&](long step, long contacts) {
 #ifdef FCSOLVE_EXAMPLES_WITH_FCLIB
-    if (step == p.dump_step) {
-      fcsolve::GlobalProblem global = stepper.global();
-      const std::string params = "spheres=" + std::to_string(p.spheres) + " seed=" +
-                                 std::to_string(p.seed) + " mu=" + std::to_string(p.mu) +
-                                 " theta=" + std::to_string(p.theta) + " dt=" + std::to_string(p.h) +
-                                 " restitution=" + std::to_string(p.law.restitution) +
-                                 " beta=" + std::to_string(p.law.beta) + " slop=" +
-                                 std::to_string(p.law.slop) + " step=" + std::to_string(step);
-      global.text.title = "mbs_pile step " + std::to_string(step);
-      global.text.description = "fcsolve examples/mbs_pile.cpp: spheres falling into an open box; " + params;
-      global.text.math_info =
-          "Moreau-Jean step: M v+ = f + H r, f = M v + h f_ext, u = H^T v+ + w, "
-          "w_N = e min(u_N,0) + beta min(gap+slop,0)/h; solution: NSGS on W = H^T M^-1 H";
-      stepping::dump_global(p.dump_file, global, stepper.reactions(), stepper.velocity_after());
-      if (!p.dump_local_file.empty()) {
-        fcsolve::LocalProblem local = stepper.local();
-        local.text = global.text;
-        stepping::dump_local(p.dump_local_file, local, stepper.reactions());
-      }
-      std::printf("# dumped step %ld (%ld contacts) to %s\n", step, s.contacts, p.dump_file.c_str());
-      dumped = true;
-    }
+    fcsolve::GlobalProblem global = stepper.global();
+    const std::string params = "spheres=" + std::to_string(p.spheres) + " seed=" +
+                               std::to_string(p.seed) + " mu=" + std::to_string(p.mu) +
+                               " theta=" + std::to_string(p.theta) + " dt=" + std::to_string(p.h) +
+                               " restitution=" + std::to_string(p.law.restitution) +
+                               " beta=" + std::to_string(p.law.beta) + " slop=" +
+                               std::to_string(p.law.slop) + " step=" + std::to_string(step);
+    global.text.title = "mbs_pile step " + std::to_string(step);
+    global.text.description = "fcsolve examples/mbs_pile.cpp: spheres falling into an open box; " + params;
+    global.text.math_info =
+        "Moreau-Jean step: M v+ = f + H r, f = M v + h f_ext, u = H^T v+ + w, "
+        "w_N = e min(u_N,0) + beta min(gap+slop,0)/h; solution: NSGS on W = H^T M^-1 H";
+    stepping::dump_step(p.dump.file, p.dump.local_file, global, [&] { return stepper.local(); },
+                        stepper.reactions(), stepper.velocity_after(), step, contacts);
+#else
+    (void)step, (void)contacts;  // --dump is refused without HDF5 (stepping/options.hpp)
 #endif
-  }
-  log.summary();
-  if (p.dump_step >= 0 && !dumped) {
-    std::cerr << "mbs_pile: nothing dumped: step " << p.dump_step << " has no contact or is not simulated\n";
-    return 1;
-  }
-  return log.all_converged() ? 0 : 1;
+  });
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  Parameters p;
-  try {
-    p = parse(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "mbs_pile: " << e.what() << "\n";
-    return 2;
-  }
-  try {
-    return run(p);
-  } catch (const std::exception& e) {
-    std::cerr << "mbs_pile: " << e.what() << "\n";
-    return 3;
-  }
-}
+int main(int argc, char** argv) { return stepping::example_main("mbs_pile", argc, argv, parse, run); }

@@ -5,6 +5,7 @@
 
 #include <fcsolve/io/fclib.hpp>
 
+#include <cstdio>
 #include <string>
 
 namespace stepping {
@@ -28,6 +29,21 @@ inline void dump_local(const std::string& path, const fcsolve::LocalProblem& p,
   s.r = r;
   s.u = p.W * r + p.q;
   fcsolve::fclib::write_solution(path, s);
+}
+
+/// --dump of one step: FC/I to global_path and, when local_path is set, the
+/// FC/II that make_local() builds from it, both with the example's solution.
+template <class MakeLocal>
+void dump_step(const std::string& global_path, const std::string& local_path,
+               const fcsolve::GlobalProblem& global, MakeLocal make_local,
+               const fcsolve::Vector& r, const fcsolve::Vector& v, long step, long contacts) {
+  dump_global(global_path, global, r, v);
+  if (!local_path.empty()) {
+    fcsolve::LocalProblem local = make_local();
+    local.text = global.text;
+    dump_local(local_path, local, r);
+  }
+  std::printf("# dumped step %ld (%ld contacts) to %s\n", step, contacts, global_path.c_str());
 }
 
 }  // namespace stepping

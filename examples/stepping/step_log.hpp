@@ -52,11 +52,37 @@ class StepLog {
   }
   bool all_converged() const { return converged_ == steps_; }
 
+
  private:
   bool quiet_;
   long steps_ = 0, converged_ = 0;
   long long iterations_ = 0, contacts_ = 0;
   double seconds_ = 0, setup_seconds_ = 0;
 };
+
+/// The time loop of an example: `steps` steps of the stepper, a logged line
+/// each, and dump(step, contacts) at step dump_step when it has contacts.
+/// Returns the example's exit status: 1 when a step failed or the dump step
+/// was never reached, else 0.
+template <class Stepper, class Dump>
+int run_steps(const char* example, Stepper& stepper, long steps, bool quiet, long dump_step,
+              Dump dump) {
+  StepLog log(quiet);
+  bool dumped = false;
+  for (long step = 1; step <= steps; ++step) {
+    const fcsolve::scenes::StepReport& s = stepper.step();
+    log.step(s);
+    if (s.contacts == 0 || step != dump_step) continue;
+    dump(step, long(s.contacts));
+    dumped = true;
+  }
+  log.summary();
+  if (dump_step >= 0 && !dumped) {
+    std::fprintf(stderr, "%s: nothing dumped: step %ld has no contact or is not simulated\n", example,
+                 dump_step);
+    return 1;
+  }
+  return log.all_converged() ? 0 : 1;
+}
 
 }  // namespace stepping
