@@ -380,12 +380,12 @@ class Plan : private StagedRun<LocalProblemView> {
           false, "goldstein-price", kNewtonStallWindow);
   }
 
-  /// The nonsmooth interior point (`nipm`), from the centre of the cones:
-  /// its iteration count hardly depends on how degenerate the problem is,
-  /// where semismooth Newton crawls when W is singular with many contacts
-  /// per body (the reactions are not unique) or badly scaled by mass ratios
-  /// (Acary, Brémond & Huber 2018, docs/references.md). Measured on the
-  /// generated corpus: where nipm converges it takes 14 to 52 iterations
+  /// The nonsmooth interior point (`nipm`; Nguyen & Armand, NIPM,
+  /// docs/references.md), from the centre of the cones. Measured, its
+  /// iteration count hardly depends on how degenerate the problem is, where
+  /// semismooth Newton crawls when W is singular with many contacts per body
+  /// (the reactions are not unique) or badly scaled by mass ratios: where
+  /// nipm alone converges on the rigid corpus it takes 3 to 52 iterations
   /// (box stacks of 1000 contacts: 20, 0.14 s, where the Newton stages
   /// stall at 1e-2 and the proximal stage needs 3 s), so it gets 100; run
   /// right after the first Newton stall it lost a sphere pile that the
@@ -402,8 +402,8 @@ class Plan : private StagedRun<LocalProblemView> {
   bool interior_point_ran_ = false;
 
   /// After Newton stalled or NSGS did not finish: sweeps, Newton once more
-  /// from what they reached, the proximal point method, then sweeps until
-  /// the budget is spent.
+  /// from what they reached, the interior point (if it has not run), the
+  /// proximal point method, then sweeps until the budget is spent.
   SolveOutcome robust_tail(const std::string& why) {
     const double before = best_error_;
     stage("nsgs", "nsgs", budget(0.4), std::min(kBridgeSweeps, max_iter_left()), why);
@@ -509,7 +509,8 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
 
 inline void add_auto_solvers(std::vector<SolverEntry>& v) {
   SolverEntry e("auto", "auto",
-                "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/proximal point/Newton fallback; "
+                "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/Newton/interior point (nipm)/proximal point "
+                "fallback (nipm first with mass ratios); "
                 "each stage from the best iterate (FC/I with a dense W: nsn-ac-global, then nipm)");
   e.default_max_iter = 1000000;
   e.solve_local = auto_detail::solve_local;
