@@ -134,6 +134,28 @@ def test_deterministic(name, tmp_path):
     assert a["error"] == b["error"]
 
 
+@pytest.mark.parametrize("scene, after", [
+    # mass ratio 100 between stacked boxes: the W_NN spread (~110) sends the
+    # plan to the interior point right after the warm-start sweeps
+    (["--contacts", 300, "--seed", 40, "--mu", 2, "--mass-ratio", 100,
+      "--penetration-correction", 0.2], ["nsgs"]),
+    # mass ratio 1000 on 12 contacts (W_NN spread ~2): Newton stalls twice,
+    # then the interior point ends the plan before the proximal stage
+    (["--contacts", 10, "--seed", 34],
+     ["nsgs", "newton-full", "newton", "nsgs", "newton-full", "newton"]),
+], ids=["spread", "newton-stalls"])
+def test_interior_point_stage_on_heavy_on_light_stacks(scene, after, tmp_path):
+    local = tmp_path / "stack-local.hdf5"
+    g = run("generate", "heavy-on-light", *scene, "--local-out", local)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(local, "--max-time", 20, out=sol)
+    assert code == 0 and res["status"] == "converged", res
+    check_stages(res)
+    assert [st["stage"] for st in res["stages"]] == after + ["ipm"], res["message"]
+    assert independent_error(local, sol) <= 1e-8
+
+
 def test_text_output_names_the_stages():
     p = run("solve", BUNDLED / "OneObject-i1028-138.hdf5")
     assert p.returncode == 0, p.stderr

@@ -8,7 +8,8 @@
 // earlier stage's, and "converged" is claimed only when that error <= tol.
 //
 //   features   cheap, measured once: nc, d, m, mu range, kind (FC/I, FC/II),
-//              n and d nc / n (rank deficiency of W = H^T M^-1 H) for FC/I.
+//              n and d nc / n (rank deficiency of W = H^T M^-1 H) for FC/I,
+//              the spread max/min of W_NN over the contacts (mass ratios).
 //   1 sweeps   NSGS (`nsgs`): a warm start and a first measured convergence
 //              rate. Small problems (nc <= kTinyContacts) stay with NSGS to
 //              the end: a sweep costs next to nothing there and a Newton
@@ -20,6 +21,9 @@
 //              singular, the reactions are not unique and Gauss-Seidel
 //              plateaus (measured: spheres-in-a-box, d nc / n = 1.3, NSGS
 //              stuck at 6e-8).
+//   1b ipm     with mu > 0 and a W_NN spread >= 30 (mass ratios of 30 and
+//              more): the nonsmooth interior point (`nipm`) on a share of
+//              the budget before Newton, which crawls there (measured).
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence),
@@ -30,10 +34,13 @@
 //              iterate (robust, monotone in practice), then
 //   4 newton   Newton once more from what the sweeps reached (a Newton
 //              stage often converges from a better start where it stalled),
-//   5 proximal the proximal point method (`ppa`): Newton on the
+//   5 ipm      with mu > 0, if it did not run at 1b: the nonsmooth interior
+//              point (`nipm`), 100 iterations at most, on a share of the
+//              budget (its iteration count barely feels a singular W),
+//   6 proximal the proximal point method (`ppa`): Newton on the
 //              regularised subproblems W + alpha I, robust where W is
 //              singular or badly scaled,
-//   6 sweeps   NSGS for whatever time is left.
+//   7 sweeps   NSGS for whatever time is left.
 //
 // FC/I is reduced to FC/II (W = H^T M^-1 H) and planned as above when W
 // stays sparse: rigid bodies, M block-diagonal. When M^-1 couples the dofs
@@ -98,9 +105,19 @@ inline constexpr int kBridgeSweeps = 500;
 inline constexpr double kInverseMassFill = 4;
 /// Below this many entries of M^-1 H either way is cheap: reduce.
 inline constexpr double kSmallInverseMassProduct = 1e5;
+/// Spread max/min of the normal diagonal W_NN over the contacts from which
+/// the interior point runs before Newton. W_NN sums the inverse masses (and
+/// lever arms) of the two bodies, so the spread is a measured mass ratio.
+/// Generated heavy-on-light stacks: spread 11 (mass ratio 10), Newton
+/// within 1.8x of the fastest solver; spread 110 and 1100 (mass ratios 100,
+/// 1000), the Newton stages 9 to 16x slower than `nipm`, which was within
+/// 2.2x of the fastest. 30 lies between, on a log scale.
+inline constexpr double kMassSpreadForInteriorPoint = 30;
+/// Iterations of the interior-point stage (see Plan::interior_point).
+inline constexpr int kInteriorPointIterations = 100;
 
-/// Cheap features of the problem: the plan decides on nc, the kind and
-/// d nc / n; the mu range is reported with them.
+/// Cheap features of the problem: the plan decides on nc, the kind,
+/// d nc / n, mu > 0 and the spread of W_NN; the mu range is reported with them.
 struct Features {
   bool global = false;
   Index nc = 0, m = 0;
@@ -113,6 +130,8 @@ struct Features {
   /// nnz(M^-1 H) from the sparsity of M, H, G (FC/I only).
   double inverse_mass_nonzeros = 0;
   double inverse_mass_fill = 1;  ///< nnz(M^-1 H) / nnz(H)
+  /// max / min over the contacts of W_NN (FC/II, or FC/I once reduced).
+  double normal_spread = 1;
 };
 
 inline Features local_features(const LocalProblemView& p) {
@@ -236,6 +255,7 @@ class StagedRun {
                                                     : Status::Stalled;
     std::string features = "nc=" + std::to_string(f_.nc) + " d=" + std::to_string(f_.d) +
                            " mu=[" + number(f_.mu_min) + "," + number(f_.mu_max) + "]";
+    if (f_.normal_spread != 1) features += " W_NN spread=" + number(f_.normal_spread);
     if (f_.global)
       features += " n=" + std::to_string(f_.n) + " d*nc/n=" + number(f_.contact_ratio) +
                   " nnz(M^-1 H)/nnz(H)=" + number(f_.inverse_mass_fill);
@@ -263,6 +283,19 @@ class StagedRun {
   double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
 
+/// max / min over the contacts of the normal diagonal entry of W (1 when
+/// some W_NN is not positive: no mass ratio to read).
+inline double normal_diagonal_spread(const LocalProblemView& p) {
+  const Index nc = p.num_contacts();
+  double lo = std::numeric_limits<double>::infinity(), hi = 0;
+  for (Index i = 0; i < nc; ++i) {
+    const double w = p.W.coeff(p.d * i, p.d * i);
+    lo = std::min(lo, w);
+    hi = std::max(hi, w);
+  }
+  return nc > 0 && lo > 0 ? hi / lo : 1.0;
+}
+
 /// The staged run on FC/II.
 class Plan : private StagedRun<LocalProblemView> {
  public:
@@ -270,6 +303,7 @@ class Plan : private StagedRun<LocalProblemView> {
     // The starting point's own error: a stage never returns worse than it.
     const Vector u = p.W * best_ + p.q;
     best_error_ = local_error_report(p, best_, u).error;
+    f_.normal_spread = normal_diagonal_spread(p);
   }
 
   SolveOutcome run() {
@@ -290,6 +324,11 @@ class Plan : private StagedRun<LocalProblemView> {
     double rate = 1;
     if (h.size() >= 20 && h[9] > 0 && h[19] > 0 && h[19] < h[9]) rate = std::pow(h[19] / h[9], 0.1);
     else if (e_start > 0 && best_error_ < e_start) rate = std::pow(best_error_ / e_start, 1.0 / kWarmSweeps);
+    if (f_.normal_spread >= kMassSpreadForInteriorPoint) {
+      interior_point("W_NN spread " + number(f_.normal_spread) + " >= " + number(kMassSpreadForInteriorPoint) +
+                     ": mass ratios, Newton crawls");
+      if (done()) return finish();
+    }
     std::string why_newton;
     if (f_.global && f_.contact_ratio > 1)
       why_newton = "d*nc/n = " + number(f_.contact_ratio) +
@@ -341,15 +380,38 @@ class Plan : private StagedRun<LocalProblemView> {
           false, "goldstein-price", kNewtonStallWindow);
   }
 
+  /// The nonsmooth interior point (`nipm`; Nguyen & Armand, NIPM,
+  /// docs/references.md), from the centre of the cones. Measured, its
+  /// iteration count hardly depends on how degenerate the problem is, where
+  /// semismooth Newton crawls when W is singular with many contacts per body
+  /// (the reactions are not unique) or badly scaled by mass ratios: where
+  /// nipm alone converges on the rigid corpus it takes 3 to 52 iterations
+  /// (box stacks of 1000 contacts: 20, 0.14 s, where the Newton stages
+  /// stall at 1e-2 and the proximal stage needs 3 s), so it gets 100; run
+  /// right after the first Newton stall it lost a sphere pile that the
+  /// sweeps and Newton solve next (its 1e-5 iterate was a worse start for
+  /// them), hence after them. The Lorentz-cone map of the IPM needs mu > 0;
+  /// a share of the budget so that the tail keeps the rest.
+  /// Runs at most once (a second run would start from the same centre).
+  void interior_point(const std::string& why) {
+    if (!(f_.mu_min > 0) || interior_point_ran_) return;
+    interior_point_ran_ = true;
+    stage("ipm", "nipm", budget(0.3), std::min(kInteriorPointIterations, max_iter_left()),
+          why + ": the interior point");
+  }
+  bool interior_point_ran_ = false;
+
   /// After Newton stalled or NSGS did not finish: sweeps, Newton once more
-  /// from what they reached, the proximal point method, then sweeps until
-  /// the budget is spent.
+  /// from what they reached, the interior point (if it has not run), the
+  /// proximal point method, then sweeps until the budget is spent.
   SolveOutcome robust_tail(const std::string& why) {
     const double before = best_error_;
     stage("nsgs", "nsgs", budget(0.4), std::min(kBridgeSweeps, max_iter_left()), why);
     if (done()) return finish();
     newton(best_error_ < before ? "sweeps improved the iterate: Newton again"
                                 : "sweeps did not improve: Newton from the best iterate");
+    if (done()) return finish();
+    interior_point("Newton stalled twice");
     if (done()) return finish();
     // Newton stalls twice where W is singular or badly scaled (many contacts
     // per body, mass ratios): each proximal subproblem FC/II(W + alpha I,
@@ -447,7 +509,8 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
 
 inline void add_auto_solvers(std::vector<SolverEntry>& v) {
   SolverEntry e("auto", "auto",
-                "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/proximal point/Newton fallback; "
+                "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/Newton/interior point (nipm)/proximal point "
+                "fallback (nipm first with mass ratios); "
                 "each stage from the best iterate (FC/I with a dense W: nsn-ac-global, then nipm)");
   e.default_max_iter = 1000000;
   e.solve_local = auto_detail::solve_local;
