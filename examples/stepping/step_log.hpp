@@ -52,7 +52,6 @@ class StepLog {
   }
   bool all_converged() const { return converged_ == steps_; }
 
-
  private:
   bool quiet_;
   long steps_ = 0, converged_ = 0;
