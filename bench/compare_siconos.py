@@ -68,6 +68,8 @@ PAIRS = {
     "vi": [("vi-fp", [], "vi-fp"), ("vi-eg", [], "vi-eg")],
     # ADMM with De Saxce's shift against Siconos' ADMM
     "admm": [("admm", [], "admm")],
+    # ADMM on FC/I in (v, r) (global files only) against Siconos' gfc3d ADMM
+    "admm-global": [("admm-global", [], "gadmm")],
     "ipm": [("nipm", [], "ipm"), ("aclm-newton", [], "ipm"), ("nipm", [], "gnsgs-wr"),
             ("nipm", [], "gnsn-ac")],
 }

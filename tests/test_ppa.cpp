@@ -365,25 +365,11 @@ TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]"
   CHECK_THROWS_AS(req.settings.set_text("sigma", "-1"), UsageError);
 }
 
-namespace {
-
-/// The FCLIB error of (r, v) on g, its scale from a factorisation of its own.
-double independent_global_error(const GlobalProblem& g, const Vector& r, const Vector& v) {
-  const GlobalReduction<> reduction{GlobalProblemView(g), /*form_W=*/false};
-  return global_error_report(g, reduction.free_velocity_norm(), r, v).error;
-}
-
-}  // namespace
+using fcsolve_test::independent_global_error;
 
 TEST_CASE("ppa-global: the bundled and shared FC/I problems to 1e-8, and warm starts", "[ppa][global]") {
-  std::vector<std::string> files = fcsolve_test::bundled_files("global");
+  const std::vector<std::string> files = fcsolve_test::bundled_and_shared_files("global");
   REQUIRE(files.size() >= 3);
-  if (fcsolve_test::have_shared_data()) {
-    for (const auto& f : fcsolve_test::fclib_files("global")) files.push_back(f);
-  } else {
-    WARN("no shared FCLIB collection at " << fcsolve_test::shared_data_dir()
-                                          << ": the bundled global problems only");
-  }
   for (const auto& f : files) {
     INFO(f);
     const GlobalProblem g = fclib::read_global(f);

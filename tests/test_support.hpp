@@ -3,6 +3,7 @@
 
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/problem/error.hpp>
+#include <fcsolve/problem/reduction.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -59,6 +60,19 @@ inline std::vector<std::string> fclib_files(const std::string& sub) {
     if (e.path().extension() == ".hdf5") out.push_back(e.path().string());
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// The bundled files of kind `sub`, then the shared collection's (with a
+/// warning naming where it was looked for when it is absent).
+inline std::vector<std::string> bundled_and_shared_files(const std::string& sub) {
+  std::vector<std::string> files = bundled_files(sub);
+  if (have_shared_data()) {
+    for (const auto& f : fclib_files(sub)) files.push_back(f);
+  } else {
+    WARN("no shared FCLIB collection at " << shared_data_dir() << ": the bundled " << sub
+                                          << " problems only");
+  }
+  return files;
 }
 
 inline std::string hostile(const std::string& name) {
@@ -123,6 +137,15 @@ fcsolve::Vector solve_checked(Solver& solver, const fcsolve::LocalProblem& p,
         Approx(fcsolve::local_error(p, r)).epsilon(1e-6).margin(1e-13));
   CHECK((u - (fcsolve::SparseMatrix(p.W) * r + p.q)).norm() <= 1e-12 * (1 + u.norm()));
   return r;
+}
+
+/// The FCLIB error of (r, v [, lambda]) on g, its scale from a factorisation
+/// of its own (independent of the solver's).
+inline double independent_global_error(const fcsolve::GlobalProblem& g, const fcsolve::Vector& r,
+                                       const fcsolve::Vector& v,
+                                       const fcsolve::Vector& lambda = fcsolve::Vector()) {
+  const fcsolve::GlobalReduction<> reduction{fcsolve::GlobalProblemView(g), /*form_W=*/false};
+  return fcsolve::global_error_report(g, reduction.free_velocity_norm(), r, v, lambda).error;
 }
 
 }  // namespace fcsolve_test

@@ -30,6 +30,8 @@
 #pragma once
 
 #include <fcsolve/admm/admm_factorization.hpp>
+#include <fcsolve/admm/admm_loop.hpp>
+#include <fcsolve/admm/admm_rules.hpp>
 #include <fcsolve/admm/admm_settings.hpp>
 #include <fcsolve/core/exceptions.hpp>
 #include <fcsolve/core/solver_contract.hpp>
@@ -47,21 +49,18 @@
 namespace fcsolve {
 
 template <class Cone, class Storage, class Factorization = DefaultAdmmFactorization<Storage>>
-class Admm {
+class Admm : public AdmmLoop<Admm<Cone, Storage, Factorization>> {
+  using Base = AdmmLoop<Admm>;
+  friend Base;
+  using Base::best_error_, Base::factorization_ok_, Base::factorizations_, Base::info_, Base::rho0_,
+      Base::rho_, Base::settings_;
+
  public:
   static constexpr int d = Cone::dim;
   using Settings = AdmmSettings;
   using Vec = typename Cone::Vec;
 
-  explicit Admm(const Settings& s = {}) : settings_(s) {}
-  Settings& settings() { return settings_; }
-  const Settings& settings() const { return settings_; }
-  const SolverInfo& info() const { return info_; }
-
-  /// rho at the end of the last solve (after adaptation), and how many
-  /// factorisations of W_s + rho I that solve used (1: rho never changed).
-  double rho() const { return rho_; }
-  int factorizations() const { return factorizations_; }
+  explicit Admm(const Settings& s = {}) : Base(s) {}
 
   /// Validates p, splits W into its symmetric and antisymmetric parts,
   /// estimates rho0 and factorises W_s + rho0 I. p must outlive *this.
@@ -86,13 +85,13 @@ class Admm {
     info_ = SolverInfo();
     factorizations_ = 0;
     rho_floor_ = 0;
-    factorization_ok_ = refactorize(rho0_);
+    factorization_ok_ = this->refactorize(rho0_);
     // W_s + rho0 I indefinite (W_s is semidefinite only up to rounding):
     // a larger rho0, up to 1e6 times
     for (int i = 0; i < 6 && !factorization_ok_; ++i) {
       rho0_ *= 10;
       rho_floor_ = rho0_;
-      factorization_ok_ = refactorize(rho0_);
+      factorization_ok_ = this->refactorize(rho0_);
     }
     info_.setup_seconds = clock.seconds();
     return *this;
@@ -102,85 +101,35 @@ class Admm {
   const SolverInfo& solve(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u) {
     Stopwatch clock;
     fcsolve::check_solve_arguments("Admm", problem_.has_value(), r, size(), u, size(), "u");
-    info_.status = Status::MaxIterations;
-    info_.iterations = 0;
-    info_.history.clear();
-    info_.message.clear();
-    if (rho_ != rho0_) factorization_ok_ = refactorize(rho0_);
-    factorizations_ = 1;  // the cap counts this solve's factorisations, the one in use included
+    this->begin_solve();
     z_ = r;
     r_ = r;
     xi_.setZero();
-    double error = velocity_and_error();  // u_, s_ at r_
-    best_error_ = error;
-    best_r_ = r_;
-    best_u_ = u_;
-    if (!factorization_ok_) {
-      info_.status = Status::NumericalError;
-      info_.message = "W_s + rho I is not positive definite";
-    } else if (error > settings_.tol) {
-      iterate(clock);
-    }
-    if (best_error_ <= settings_.tol) info_.status = Status::Converged;
+    const double error = velocity_and_error();  // u_, s_ at r_
+    this->run(error, clock);
     r = best_r_;
     u = best_u_;
-    info_.error = best_error_;
-    info_.solve_seconds = clock.seconds();
     return info_;
   }
 
  private:
   Index size() const { return problem_ ? problem_->size() : 0; }
 
-  /// The state of Nesterov's extrapolation with restart (Goldstein et al.
-  /// 2014, alg. 8): the step parameter and the last combined residual.
-  struct Momentum {
-    double a = 1;
-    double combined_prev = std::numeric_limits<double>::infinity();
-  };
-
-  void iterate(const Stopwatch& clock) {
-    Momentum momentum;
-    restart_extrapolation(momentum);
-    for (int k = 1; k <= settings_.max_iter; ++k) {
-      info_.iterations = k;
-      FCSOLVE_NO_MALLOC_BEGIN();
-      update_r();
-      double primal_sq = 0, dual_sq = 0;
-      project_and_update_dual(primal_sq, dual_sq);
-      const double error = velocity_and_error();
-      if (error < best_error_) {
-        best_error_ = error;
-        best_r_ = r_;
-        best_u_ = u_;
-      }
-      extrapolate(momentum, dual_sq);
-      FCSOLVE_NO_MALLOC_END();
-      if (!std::isfinite(error)) {
-        info_.status = Status::NumericalError;
-        break;
-      }
-      if (settings_.record_history) info_.history.push_back(error);
-      if (error <= settings_.tol) break;
-      if (callback_requests_stop(settings_.callback, IterationInfo{k, error, true, clock.seconds()})) {
-        info_.status = Status::Stopped;
-        break;
-      }
-      if (clock.seconds() > settings_.max_time) {
-        info_.status = Status::TimeLimit;
-        break;
-      }
-      if (k % std::max(1, settings_.adapt_interval) == 0 && adapt_rho(primal_sq, dual_sq)) {
-        if (!factorization_ok_) {
-          info_.status = Status::NumericalError;
-          info_.message = "W_s + rho I is not positive definite";
-          break;
-        }
-        // the old momentum was built with another rho
-        restart_extrapolation(momentum);
-      }
-    }
+  // ---- hooks of AdmmLoop
+  static constexpr const char* kFactorizationFailure = "W_s + rho I is not positive definite";
+  double step(double& primal_sq, double& dual_sq) {
+    update_r();
+    project_and_update_dual(primal_sq, dual_sq);
+    return velocity_and_error();
   }
+  void save_best() {
+    best_r_ = r_;
+    best_u_ = u_;
+  }
+  double combined_residual(double dual_sq) const { return (xi_ - xih_).squaredNorm() + dual_sq; }
+  AdmmPoint point() { return {&z_, &zh_, &z_prev_, &xi_, &xih_, &xi_prev_}; }
+  bool factorize(double rho) { return factorization_.factorize(rho); }
+  void finish_solve() {}
 
   /// r-update: (W_s + rho I) r = rho (zh - xih) - q - s - W_a r. Called with
   /// allocation forbidden; a factorisation whose solve allocates is let.
@@ -210,38 +159,6 @@ class Admm {
     }
   }
 
-  /// Goldstein et al. 2014, alg. 8: extrapolate while the combined residual
-  /// c = ||xi - xih||^2 + ||z - zh||^2 falls, restart from (z_{k-1}, xi_{k-1})
-  /// when not; without acceleration the next point is (z, xi).
-  void extrapolate(Momentum& m, double dual_sq) {
-    const double combined = (xi_ - xih_).squaredNorm() + dual_sq;
-    if (settings_.acceleration && combined < settings_.restart_factor * m.combined_prev) {
-      const double a_next = 0.5 * (1 + std::sqrt(1 + 4 * m.a * m.a));
-      const double beta = (m.a - 1) / a_next;
-      zh_ = z_ + beta * (z_ - z_prev_);
-      xih_ = xi_ + beta * (xi_ - xi_prev_);
-      m.a = a_next;
-      m.combined_prev = combined;
-    } else if (settings_.acceleration) {
-      m.a = 1;
-      zh_ = z_prev_;
-      xih_ = xi_prev_;
-      m.combined_prev /= settings_.restart_factor;
-    } else {
-      zh_ = z_;
-      xih_ = xi_;
-    }
-  }
-
-  /// Extrapolation restarted from the current point.
-  void restart_extrapolation(Momentum& m) {
-    m = Momentum();
-    zh_ = z_;
-    xih_ = xi_;
-    z_prev_ = z_;
-    xi_prev_ = xi_;
-  }
-
   /// u_ = W r + q, s_ = g(u_); returns the FCLIB error of r_.
   double velocity_and_error() {
     const LocalProblemView& p = *problem_;
@@ -261,38 +178,23 @@ class Admm {
   /// ||z||), r_d / max(||y||, ||q||) with y = rho xi); true if it changed
   /// (then W_s + rho I is refactorised and xi rescaled).
   bool adapt_rho(double primal_sq, double dual_sq) {
-    if (settings_.rho_strategy == AdmmRhoStrategy::Constant) return false;
     if (factorizations_ > settings_.max_refactorizations) return false;
     const double tiny = std::numeric_limits<double>::min();
     const double rp = std::sqrt(primal_sq) / std::max({r_.norm(), z_.norm(), tiny});
     const double rd = rho_ * std::sqrt(dual_sq) / std::max({rho_ * xi_.norm(), problem_->q.norm(), tiny});
-    if (!(rp > 0 && rd > 0) || !std::isfinite(rp / rd)) return false;
-    double factor = 1;
-    if (settings_.rho_strategy == AdmmRhoStrategy::ResidualBalancing) {
-      if (rp > 10 * rd) factor = 2;
-      else if (rd > 10 * rp) factor = 0.5;
-    } else {
-      const double f = std::sqrt(rp / rd);
-      if (f > 5 || f < 0.2) factor = f;
-    }
+    const double factor = admm_rho_factor(settings_.rho_strategy, rp, rd);
     if (factor < 1 && rho_ * factor < rho_floor_) return false;
     if (factor == 1) return false;
     const double old = rho_;
-    factorization_ok_ = refactorize(rho_ * factor);
+    factorization_ok_ = this->refactorize(rho_ * factor);
     if (!factorization_ok_ && factor < 1) {
       // W_s is positive semidefinite only up to rounding: a small rho can
       // leave W_s + rho I indefinite. Keep the last rho and go no lower.
       rho_floor_ = old;
-      factorization_ok_ = refactorize(old);
+      factorization_ok_ = this->refactorize(old);
     }
     xi_ *= old / rho_;
     return true;
-  }
-
-  bool refactorize(double rho) {
-    rho_ = rho;
-    ++factorizations_;
-    return factorization_.factorize(rho);
   }
 
   /// rho0 (AdmmSettings::rho_init): L = lambda_max(W_s) by power iteration,
@@ -318,16 +220,12 @@ class Admm {
     return settings_.rho * std::sqrt(L * mmin) * std::pow(L / mmin, 0.2);
   }
 
-  Settings settings_;
-  SolverInfo info_;
   std::optional<LocalProblemView> problem_;
   Storage W_;
   SparseMatrix Wa_;
   Factorization factorization_;
   Vector r_, z_, xi_, zh_, xih_, z_prev_, xi_prev_, b_, u_, s_, best_r_, best_u_;
-  double scale_ = 1, rho0_ = 1, rho_ = 1, rho_floor_ = 0, best_error_ = 0;
-  int factorizations_ = 0;
-  bool factorization_ok_ = false;
+  double scale_ = 1, rho_floor_ = 0;
 };
 
 }  // namespace fcsolve

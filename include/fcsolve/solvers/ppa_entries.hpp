@@ -92,13 +92,7 @@ inline GlobalSolveFunction global_solver() {
       static_assert(satisfies_solver_contract_v<Solver, GlobalProblemView>);
       Solver ppa;
       configure(ppa.settings(), req);
-      ppa.compute(p);
-      SolveOutcome out;
-      out.r = initial_reactions(req, p.size());
-      out.v.resize(p.num_dofs());
-      out.info = ppa.solve(out.r, out.v);
-      out.reduced_q_norm = ppa.free_velocity_norm();  // the registry need not factorise M again
-      return out;
+      return compute_and_solve(ppa, p, req);
     });
   };
 }

@@ -25,6 +25,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -133,15 +134,23 @@ inline Vector initial_reactions(const SolveRequest& req, Index size) {
   return req.r0.size() ? req.r0 : Vector(Vector::Zero(size));
 }
 
-/// Runs a local solver of the contract (core/solver_contract.hpp), its
-/// settings already set: compute(p), then solve from the request's warm start.
-template <class Solver>
-SolveOutcome compute_and_solve(Solver& solver, const LocalProblemView& p, const SolveRequest& req) {
+/// Runs a solver of the contract (core/solver_contract.hpp), its settings
+/// already set: compute(p), then solve from the request's warm start. On
+/// FC/I (a global-native solver) v comes out with the error scale the
+/// solver computed, so that the registry need not factorise M again.
+template <class Solver, class View>
+SolveOutcome compute_and_solve(Solver& solver, const View& p, const SolveRequest& req) {
   solver.compute(p);
   SolveOutcome out;
   out.r = initial_reactions(req, p.size());
-  out.u.resize(p.size());
-  out.info = solver.solve(out.r, out.u);
+  if constexpr (std::is_same_v<View, GlobalProblemView>) {
+    out.v.resize(p.num_dofs());
+    out.info = solver.solve(out.r, out.v);
+    out.reduced_q_norm = solver.free_velocity_norm();
+  } else {
+    out.u.resize(p.size());
+    out.info = solver.solve(out.r, out.u);
+  }
   return out;
 }
 

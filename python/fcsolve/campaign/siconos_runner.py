@@ -102,6 +102,7 @@ SOLVERS = {
     "ipm": _spec(None, "GLOBAL_FRICTION_3D_IPM"),
     "gnsgs-wr": _spec(None, "GLOBAL_FRICTION_3D_NSGS_WR"),
     "gnsn-ac": _spec(None, "GLOBAL_FRICTION_3D_NSN_AC"),
+    "gadmm": _spec(None, "GLOBAL_FRICTION_3D_ADMM"),
 }
 # Time is the budget, so iterations are (nearly) unbounded by default: the
 # chunked solvers stop at --max-time, the others at this count or when the
