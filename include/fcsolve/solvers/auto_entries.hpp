@@ -45,8 +45,9 @@
 // FC/I is reduced to FC/II (W = H^T M^-1 H) and planned as above when W
 // stays sparse: rigid bodies, M block-diagonal. When M^-1 couples the dofs
 // (an elastic body: W dense, d^2 nc^2 entries) forming W costs more than
-// solving, so the plan stays on FC/I: semismooth Newton in (v, r)
-// (`nsn-ac-global`, W never formed), then the nonsmooth interior point
+// solving, so the plan stays on FC/I, W never formed: ADMM in (v, r)
+// (`admm-global`, at most kNativeAdmmIterations), then semismooth Newton
+// from its iterate (`nsn-ac-global`), then the nonsmooth interior point
 // (`nipm`) from scratch for the time left if Newton stalls.
 //
 // Stages switch on iteration counts and measured errors, never on measured
@@ -115,6 +116,15 @@ inline constexpr double kSmallInverseMassProduct = 1e5;
 inline constexpr double kMassSpreadForInteriorPoint = 30;
 /// Iterations of the interior-point stage (see Plan::interior_point).
 inline constexpr int kInteriorPointIterations = 100;
+/// FC/I solved natively: iterations of the first stage, ADMM in (v, r)
+/// (`admm-global`: M + rho H H^T factorised once per rho, then each
+/// iteration one solve with that factor). On the generated elastic scenes
+/// (fem-block, fem-two-bodies, 100 to 1500 contacts, mu 0 to 2) it reached
+/// 1e-8 in 29 to 52 iterations (158 with mu = 2), 2 to 5 times faster than
+/// nsn-ac-global, whose every step factorises a new Jacobian
+/// (docs/results.md). 200 bounds what a scene where ADMM crawls costs
+/// before Newton takes over from its iterate.
+inline constexpr int kNativeAdmmIterations = 200;
 
 /// Cheap features of the problem: the plan decides on nc, the kind,
 /// d nc / n, mu > 0 and the spread of W_NN; the mu range is reported with them.
@@ -442,7 +452,11 @@ class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
   SolveOutcome run() {
     const std::string why = "nnz(M^-1 H) = " + number(f_.inverse_mass_fill) +
                             " nnz(H): M^-1 couples the dofs, W would be dense; FC/I in (v, r)";
-    stage("newton-global", "nsn-ac-global", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()), why,
+    stage("admm-global", "admm-global", budget(0.4), std::min(kNativeAdmmIterations, max_iter_left()),
+          why + ", one factorisation per rho");
+    if (done()) return finish();
+    stage("newton-global", "nsn-ac-global", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()),
+          std::string("admm-global ") + to_string(last_status_) + ": semismooth Newton from its iterate",
           false, nullptr, kNewtonStallWindow);
     if (done()) return finish();
     if (last_status_ == Status::TimeLimit) {
@@ -511,7 +525,7 @@ inline void add_auto_solvers(std::vector<SolverEntry>& v) {
   SolverEntry e("auto", "auto",
                 "staged default: NSGS warm start, semismooth Newton (nsn-ac), NSGS/Newton/interior point (nipm)/proximal point "
                 "fallback (nipm first with mass ratios); "
-                "each stage from the best iterate (FC/I with a dense W: nsn-ac-global, then nipm)");
+                "each stage from the best iterate (FC/I with a dense W: admm-global, nsn-ac-global, then nipm)");
   e.default_max_iter = 1000000;
   e.solve_local = auto_detail::solve_local;
   e.solve_global = auto_detail::solve_global;
