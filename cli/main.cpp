@@ -2,7 +2,7 @@
 //   fcsolve info FILE [--json]
 //   fcsolve solve FILE [--solver NAME (auto)] [--tol 1e-8] [--max-iter N] [--max-time S]
 //                 [--out SOLUTION.hdf5] [--json] [--history] [--warm-start none|guess|solution]
-//                 [--SETTING VALUE ...]
+//                 [--repeat N] [--SETTING VALUE ...]
 //   fcsolve error FILE SOLUTION.hdf5 [--json]
 //   fcsolve solvers [--json]
 //   fcsolve check FILE [--json]   existence (Slater) check and diagnostics
@@ -60,6 +60,7 @@ const char* kUsage =
     "  solve FILE [--solver NAME] [options]     solve an FCLIB problem (default solver: auto)\n"
     "      --tol X (1e-8)  --max-iter N  --max-time SECONDS  --out FILE.hdf5  --json\n"
     "      --history  --warm-start none|guess|solution  --SETTING VALUE (see `fcsolve solvers`)\n"
+    "      --repeat N (1): solve N times in this process, report the fastest (hot loop)\n"
     "  error FILE SOLUTION.hdf5 [--json]        FCLIB error of a stored /solution (r [, v])\n"
     "  solvers [--json]                         list solvers and their settings\n"
     "  check FILE [--json]                      existence check (Slater SOC program) and\n"
@@ -189,6 +190,10 @@ struct SolveOptions {
   registry::SolveRequest request;
   std::string out, warm_start = "none";
   bool json = false;
+  /// Solves in this process, the fastest reported: a hot loop for
+  /// sub-millisecond problems, where a fresh process' first call costs
+  /// more than the solve (the solvers are deterministic: same result).
+  int repeat = 1;
 };
 
 /// Common options (--tol, --max-iter, ...) and the solver's own settings.
@@ -209,6 +214,11 @@ SolveOptions parse_solve_options(Args& args, const std::string& default_solver) 
   o.request.common.max_iter = int(max_iter);
   if (auto v = args.take("out")) o.out = *v;
   if (auto v = args.take("warm-start")) o.warm_start = *v;
+  if (auto v = args.take("repeat")) {
+    const long long n = parse_int("repeat", *v);
+    if (n < 1 || n > 1000000) throw UsageError("--repeat must lie in [1, 1000000]");
+    o.repeat = int(n);
+  }
   if (o.warm_start != "none" && o.warm_start != "guess" && o.warm_start != "solution")
     throw UsageError("--warm-start must be none, guess or solution");
   o.request.common.record_history = history;
@@ -311,14 +321,25 @@ registry::SolveOutcome solve_file(const std::string& path, const fclib::Problem&
     o.request.r0 = ws->r;
     o.request.v0 = ws->v;
   }
-  return std::visit(
-      [&](const auto& p) {
-        using T = std::decay_t<decltype(p)>;
-        const auto& entry = registry::find(o.solver);
-        if constexpr (std::is_same_v<T, LocalProblem>) return registry::solve(LocalProblemView(p), entry, o.request);
-        else return registry::solve(GlobalProblemView(p), entry, o.request);
-      },
-      problem);
+  const auto once = [&] {
+    return std::visit(
+        [&](const auto& p) {
+          using T = std::decay_t<decltype(p)>;
+          const auto& entry = registry::find(o.solver);
+          if constexpr (std::is_same_v<T, LocalProblem>) return registry::solve(LocalProblemView(p), entry, o.request);
+          else return registry::solve(GlobalProblemView(p), entry, o.request);
+        },
+        problem);
+  };
+  const auto seconds = [](const registry::SolveOutcome& x) {
+    return x.info.setup_seconds + x.info.solve_seconds;
+  };
+  registry::SolveOutcome best = once();
+  for (int k = 1; k < o.repeat; ++k) {
+    registry::SolveOutcome again = once();
+    if (seconds(again) < seconds(best)) best = std::move(again);
+  }
+  return best;
 }
 
 int cmd_solve(Args args) {

@@ -172,6 +172,7 @@ def test_missing_file_exits_2(tmp_path):
     ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--tol", "abc"],
     ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--tol", "-1"],
     ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--max-iter", "0"],
+    ["solve", str(BUNDLED / "Rover1039.hdf5"), "--solver", "vi-fp", "--repeat", "0"],
 ])
 def test_bad_usage_exits_2(args):
     out = run(*args)
@@ -208,6 +209,20 @@ def test_solve_writes_a_solution_fcref_accepts(tmp_path):
         with h5py.File(out_file) as f:
             r = np.asarray(f["solution/r"])
         assert fcref.error(fcref.load(str(problem)), r) == pytest.approx(res["error"], rel=1e-10)
+
+
+def test_repeat_solves_again_in_process_with_the_same_result(tmp_path):
+    # --repeat N: a hot loop for sub-millisecond problems; deterministic
+    # solvers give the same iterate, the fastest time is reported
+    problem = BUNDLED / "Rover1039.hdf5"
+    once, hot = tmp_path / "once.hdf5", tmp_path / "hot.hdf5"
+    a = run("solve", problem, "--solver", "nsgs", "--out", once, "--json")
+    b = run("solve", problem, "--solver", "nsgs", "--out", hot, "--json", "--repeat", "20")
+    assert a.returncode == 0 and b.returncode == 0, (a.stderr, b.stderr)
+    ra, rb = json.loads(a.stdout), json.loads(b.stdout)
+    assert ra["iterations"] == rb["iterations"] and ra["error"] == rb["error"]
+    with h5py.File(once) as f, h5py.File(hot) as g:
+        assert np.array_equal(np.asarray(f["solution/r"]), np.asarray(g["solution/r"]))
 
 
 def test_solve_exit_1_when_tolerance_not_reached():

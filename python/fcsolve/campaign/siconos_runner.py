@@ -2,7 +2,7 @@
 """Runs one Siconos 4.4 solver on one FCLIB problem, like `fcsolve solve`.
 
     /usr/bin/python3 siconos_runner.py FILE --solver nsgs --tol 1e-8 --max-time 20 \\
-        [--max-iter N] [--omega 1.0] --out SOL.hdf5 --json
+        [--max-iter N] [--omega 1.0] [--repeat N] --out SOL.hdf5 --json
     /usr/bin/python3 siconos_runner.py --list          # the solvers, as JSON
 
 Prints one JSON line (solver, status, iterations, error, fclib_error, seconds,
@@ -269,6 +269,9 @@ def main(argv=None):
                     help="seconds; honoured by the chunked solvers (nsgs, psor, nsn-*), "
                          "the others run to --max-iter")
     ap.add_argument("--omega", type=float, default=1.0, help="relaxation of psor")
+    ap.add_argument("--repeat", type=int, default=1,
+                    help="solve N times in this process and report the fastest (a hot loop for "
+                         "sub-millisecond problems; the solvers are deterministic)")
     ap.add_argument("--out")
     ap.add_argument("--json", action="store_true", help="accepted: output is always JSON")
     a = ap.parse_args(argv)
@@ -297,6 +300,8 @@ def main(argv=None):
         problem = fclib_error.load_problem(a.file)
         info, r, u, v, status, iterations, own_error, seconds = solve(
             sn, problem, a.solver, a.tol, a.max_iter, a.max_time)
+        for _ in range(max(a.repeat, 1) - 1):
+            seconds = min(seconds, solve(sn, problem, a.solver, a.tol, a.max_iter, a.max_time)[-1])
     except (OSError, ValueError, KeyError) as e:
         print(f"siconos_runner: {a.file}: {e}", file=sys.stderr)
         return 2
