@@ -1,11 +1,14 @@
 // One Moreau-Jean step of an elastic scene (elastic_scene.hpp), solved as
-// FC/I (M_hat, H, f, w, mu) by fcsolve's global semismooth Newton solver
-// (Alart-Curnier function; W never formed), warm-started from the previous
-// step's reactions. f and M_hat: elastodynamics.hpp; w and the index set:
+// FC/I (M_hat, H, f, w, mu) by a global-native solver, W never formed: the
+// semismooth Newton solver (Alart-Curnier function) by default, or ADMM in
+// (v, r) (AdmmGlobal: one Cholesky of M + rho H H^T per rho where Newton
+// factorises a new Jacobian each iteration; what `fcsolve generate` uses),
+// warm-started from the previous step's reactions. f and M_hat: elastodynamics.hpp; w and the index set:
 // contact_law.hpp. The last step's problem stays available (global()).
 #pragma once
 
 #include <fcsolve/core/timer.hpp>
+#include <fcsolve/admm/admm_global.hpp>
 #include <fcsolve/newton.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/scenes/elastic_scene.hpp>
@@ -16,10 +19,13 @@
 
 namespace fcsolve::scenes {
 
+/// `Solver`: a global-native solver of the contract on GlobalProblemView
+/// (GlobalNewton, AdmmGlobal), its settings' tol and max_iter from StepSettings.
+template <class Solver = GlobalNewton<AlartCurnierFunction, Coulomb3D>>
 class ElasticStepper {
  public:
   ElasticStepper(ElasticScene& scene, const StepSettings& s)
-      : scene_(scene), s_(s), newton_(newton_settings(s)) {
+      : scene_(scene), s_(s), solver_(solver_settings(s)) {
     problem_.d = 3;
     problem_.M = scene.dynamics().M_hat();
   }
@@ -62,8 +68,8 @@ class ElasticStepper {
     if (s_.warm_start)
       for (int a = 0; a < nc; ++a) r_.segment<3>(3 * a) = warm_.initial(contacts_[a].key, frame);
     Stopwatch clock;
-    newton_.compute(problem_);  // views problem_: it outlives the solve
-    report_.info = newton_.solve(r_, v_next_);
+    solver_.compute(problem_);  // views problem_: it outlives the solve
+    report_.info = solver_.solve(r_, v_next_);
     report_.seconds = clock.seconds();
 
     warm_.begin_record();
@@ -80,16 +86,16 @@ class ElasticStepper {
   const Vector& velocity_after() const { return v_next_; }
 
  private:
-  static NewtonSettings newton_settings(const StepSettings& s) {
-    NewtonSettings n;
-    n.tol = s.tol;
-    n.max_iter = s.max_iter;
-    return n;
+  static typename Solver::Settings solver_settings(const StepSettings& s) {
+    typename Solver::Settings settings;
+    settings.tol = s.tol;
+    settings.max_iter = s.max_iter;
+    return settings;
   }
 
   ElasticScene& scene_;
   StepSettings s_;
-  GlobalNewton<AlartCurnierFunction, Coulomb3D> newton_;
+  Solver solver_;
   WarmStart warm_;
   long steps_ = 0;
   StepReport report_;
