@@ -18,7 +18,7 @@ time limit, whatever the solver says about itself.
 Times are each tool's own measurement around its solve (fcsolve: the whole
 registry::solve, reduction of global problems included; Siconos: the
 reformulation and solver calls), not process start-up or file reading.
-A solve that took under --hot-below (10 ms) on either side in its fresh
+A pair that both sides solved in under --hot-below (10 ms) in a fresh
 process is measured again on both sides in a hot loop (--hot solves in one
 process, each tool's --repeat, the fastest counts), as sub-millisecond
 solves must be: a fresh process' first call costs more than the solve.
@@ -162,9 +162,10 @@ def main():
     ap.add_argument("--repeat", type=int, default=3,
                     help="runs of each solve under 1 s; the fastest counts")
     ap.add_argument("--hot", type=int, default=200,
-                    help="solves whose first call took under --hot-below seconds on either side are "
-                         "measured again on both sides in a hot loop: this many solves in one "
-                         "process (each tool's --repeat), the fastest counts; 0: never")
+                    help="pairs both sides solved in under --hot-below seconds (first call of a "
+                         "fresh process) are measured again on both sides in a hot loop: this "
+                         "many solves in one process (each tool's --repeat), the fastest counts; "
+                         "0: never")
     ap.add_argument("--hot-below", type=float, default=0.01)
     ap.add_argument("--margin", type=float, default=30.0, help="extra seconds before a process is killed")
     ap.add_argument("--fcsolve", default=os.path.join(ROOT, "build", "fcsolve"))
@@ -219,8 +220,10 @@ def main():
                                            "--out", sic_out], timeout, args.repeat)
                     sic = measure(problem, sic_out, rep, note, args.max_time, args.tol)
                     siconos_done[(path, sic_name)] = sic
-                hot = args.hot > 1 and with_siconos and \
-                    min(fc["seconds"], sic["seconds"]) < args.hot_below
+                # both solved, both fast: a slow side repeated would only
+                # add its own seconds N times over
+                hot = args.hot > 1 and with_siconos and fc["solved"] and sic["solved"] and \
+                    max(fc["seconds"], sic["seconds"]) < args.hot_below
                 if hot:
                     # a fresh process' first call (page faults, caches, lazy
                     # set-up) costs more than a sub-millisecond solve on both
