@@ -19,7 +19,11 @@
 // rho is a compliance's inverse (force / velocity), 1 / rho of the reduced
 // ADMM (admm_solver.hpp): rho0 = settings.rho / mean diag(H^T diag(M)^-1 H),
 // the lumped W_ii (O(nnz H)), adapted by residual balancing or the OSQP rule;
-// a new rho refactorises M + rho H H^T (numerically only).
+// a new rho refactorises M + rho H H^T (numerically only). M itself is
+// factorised on the same pattern (rho = 0) for the error scale ||H^T M^-1 f
+// + w|| and the velocity that balances r, M^-1 (H r + f), at the start and
+// the end of a solve: one factor in memory (what 10^5 elastic contacts need,
+// docs/results.md).
 // The returned (r, v) is the iterate of least FCLIB error (problem/error.hpp).
 #pragma once
 
@@ -32,7 +36,7 @@
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/problem/global_problem.hpp>
-#include <fcsolve/problem/reduction.hpp>
+#include <fcsolve/problem/symmetry.hpp>
 #include <fcsolve/problem/validate.hpp>
 
 #include <algorithm>
@@ -58,10 +62,11 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
   /// ||H^T M^-1 f + w||, the FCLIB error scale, known since compute().
   double free_velocity_norm() const { return q_norm_; }
 
-  /// Validates p, factorises M (error scale, starting velocity) and
-  /// M + rho0 H H^T. The viewed data must outlive the solver. Throws
-  /// InvalidProblem for bad data or a singular M, UsageError for bilateral
-  /// constraints or the spectral rho0 (FC/II only).
+  /// Validates p, analyses the pattern of M + H H^T once and factorises M
+  /// (the error scale, ||H^T M^-1 f + w||, and the starting velocity). The
+  /// viewed data must outlive the solver. Throws InvalidProblem for bad
+  /// data or a singular M, UsageError for bilateral constraints or the
+  /// spectral rho0 (FC/II only).
   AdmmGlobal& compute(const GlobalProblemView& p) {
     Stopwatch clock;
     if (p.has_bilateral())
@@ -71,16 +76,15 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
     if (!(settings_.relaxation > 0 && settings_.relaxation < 2))
       throw UsageError("AdmmGlobal: relaxation must lie in (0, 2)");
     problem_.emplace(validated(p, d));
-    reduction_.compute(p, false);
-    q_norm_ = reduction_.free_velocity_norm();
-    error_.emplace(p, q_norm_);
-    factorization_.compute(p.M, p.H, reduction_.uses_cholesky());
+    factorize_mass(p);
     for (Vector* x : {&r_, &rh_, &r_prev_, &xi_, &xih_, &xi_prev_, &s_, &u_, &x_, &best_r_, &t_})
       x->setZero(p.size());
     for (Vector* x : {&v_, &b_, &best_v_}) x->setZero(p.num_dofs());
+    factorization_.solve(Vector(p.f), free_velocity_);
+    q_norm_ = (p.H.transpose() * free_velocity_ + p.w).norm();
+    error_.emplace(p, q_norm_);
     rho0_ = settings_.rho / lumped_delassus_mean(p);
     info_ = SolverInfo();
-    factorization_ok_ = this->refactorize(rho0_);
     info_.setup_seconds = clock.seconds();
     return *this;
   }
@@ -91,9 +95,9 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
     fcsolve::check_solve_arguments("AdmmGlobal", problem_.has_value(), r, size(), v,
                                    problem_ ? problem_->num_dofs() : 0, "v");
     Stopwatch clock;
-    this->begin_solve();
     r_ = r;
-    v_ = reduction_.velocity(r_);
+    balanced_velocity(r_, v_);
+    this->begin_solve();  // the factor of M + rho0 H H^T
     update_u();
     const double error = shift_and_error();
     // xi starts as u + s projected on K*: the slack the warm start implies
@@ -130,8 +134,7 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
   /// when that is no worse: ADMM's own v balances r only up to the dual
   /// residual, and a restart from r starts from this v.
   void finish_solve() {
-    if (best_error_ == 0) return;
-    v_ = reduction_.velocity(best_r_);
+    if (best_error_ == 0 || !balanced_velocity(best_r_, v_)) return;
     r_ = best_r_;
     update_u();
     const double error = shift_and_error();
@@ -185,6 +188,40 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
     return (*error_)(r_, u_, v_);
   }
 
+  /// One factor in memory, M's or M + rho H H^T's, on one pattern: the
+  /// symbolic analysis once, a numerical factorisation per switch. rho_ = 0
+  /// while it holds M. Cholesky when M is symmetric up to rounding (LU if
+  /// that fails, as problem/reduction.hpp), LU otherwise.
+  void factorize_mass(const GlobalProblemView& p) {
+    const bool symmetric = relative_asymmetry(p.M) <= kSymmetryRoundoff;
+    factorization_.compute(p.M, p.H, symmetric);
+    bool ok = factorization_.factorize(0);
+    if (!ok && symmetric) {
+      factorization_.compute(p.M, p.H, false);
+      ok = factorization_.factorize(0);
+    }
+    if (!ok) throw InvalidProblem("M", "singular or ill-formed M: its factorisation failed");
+    rho_ = 0;
+    factorization_ok_ = true;
+  }
+
+  /// v = M^-1 (H r + f), M factorised again if the factor holds another
+  /// rho; false if that failed.
+  bool balanced_velocity(const Vector& r, Vector& v) {
+    if (r.isZero(0.0)) {
+      v = free_velocity_;  // M^-1 f, from compute()
+      return true;
+    }
+    if (rho_ != 0) {
+      if (!factorization_.factorize(0)) return false;
+      rho_ = 0;
+    }
+    b_.noalias() = problem_->H * r;
+    b_ += problem_->f;
+    factorization_.solve(b_, v);
+    return true;
+  }
+
   /// Relative residuals: primal ||x - xi|| / max(||u + s||, ||xi||), dual
   /// rho ||xi - xih|| / max(||r||, ||w||) (velocity times rho: a force).
   bool adapt_rho(double primal_sq, double dual_sq) {
@@ -215,10 +252,9 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
 
   std::optional<GlobalProblemView> problem_;
   std::optional<GlobalErrorEvaluator<Cone>> error_;
-  GlobalReduction<Backend> reduction_;
   GlobalAdmmFactorization<Backend> factorization_;
   Vector r_, rh_, r_prev_, xi_, xih_, xi_prev_, s_, u_, x_, best_r_, t_;
-  Vector v_, b_, best_v_;
+  Vector v_, b_, best_v_, free_velocity_;
   double q_norm_ = 0;
 };
 

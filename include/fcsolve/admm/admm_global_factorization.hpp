@@ -28,15 +28,19 @@ class GlobalAdmmFactorization {
   /// The pattern of M + H H^T and the symbolic analysis; `symmetric`
   /// chooses Cholesky (true) or LU.
   void compute(const SparseMap& M, const SparseMap& H, bool symmetric) {
-    const SparseMatrix Mc(M), HHt = SparseMatrix(H * SparseMatrix(H.transpose()));
-    // 0 * X keeps X's pattern: both sums have the union pattern, in the same order
-    mass_part_ = Mc + 0.0 * HHt;
-    contact_part_ = 0.0 * Mc + HHt;
-    mass_part_.makeCompressed();
-    contact_part_.makeCompressed();
-    if (mass_part_.nonZeros() != contact_part_.nonZeros())
-      throw std::logic_error("GlobalAdmmFactorization: the two patterns differ");
-    A_ = mass_part_;
+    {
+      const SparseMatrix Mc(M), HHt = SparseMatrix(H * SparseMatrix(H.transpose()));
+      // 0 * X keeps X's pattern: both sums have the union pattern, in the
+      // same order; only their values are kept (one pattern in memory)
+      SparseMatrix contact_part = 0.0 * Mc + HHt;
+      contact_part.makeCompressed();
+      A_ = Mc + 0.0 * HHt;
+      A_.makeCompressed();
+      if (A_.nonZeros() != contact_part.nonZeros())
+        throw std::logic_error("GlobalAdmmFactorization: the two patterns differ");
+      mass_values_ = Eigen::Map<const Vector>(A_.valuePtr(), A_.nonZeros());
+      contact_values_ = Eigen::Map<const Vector>(contact_part.valuePtr(), A_.nonZeros());
+    }
     symmetric_ = symmetric;
     sym_.reset();
     gen_.reset();
@@ -52,9 +56,7 @@ class GlobalAdmmFactorization {
   /// A(rho) factorised; false if that failed (singular, or not positive
   /// definite for Cholesky).
   bool factorize(double rho) {
-    Eigen::Map<Vector>(A_.valuePtr(), A_.nonZeros()) =
-        Eigen::Map<const Vector>(mass_part_.valuePtr(), A_.nonZeros()) +
-        rho * Eigen::Map<const Vector>(contact_part_.valuePtr(), A_.nonZeros());
+    Eigen::Map<Vector>(A_.valuePtr(), A_.nonZeros()) = mass_values_ + rho * contact_values_;
     if (symmetric_) {
       sym_->factorize(A_);
       return sym_->info() == Eigen::Success;
@@ -71,7 +73,8 @@ class GlobalAdmmFactorization {
   }
 
  private:
-  SparseMatrix mass_part_, contact_part_, A_;  // A_ kept alive: UMFPACK and CHOLMOD refer to it
+  SparseMatrix A_;  // kept alive: UMFPACK and CHOLMOD refer to it
+  Vector mass_values_, contact_values_;  // M's and H H^T's values on A_'s pattern
   bool symmetric_ = true;
   std::unique_ptr<typename Backend::SymmetricSolver> sym_;
   std::unique_ptr<typename Backend::GeneralSolver> gen_;
