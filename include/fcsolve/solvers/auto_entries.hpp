@@ -63,6 +63,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -149,16 +150,18 @@ inline Features local_features(const LocalProblemView& p) {
   return f;
 }
 
-/// Appends x as printf's "%.3g" writes it ("null" if not finite):
-/// std::to_chars is specified to give the same text, at a fifth of
-/// snprintf's cost (2.3k instructions a number, measured).
+/// Appends x as printf's "%.3g" writes it ("null" if not finite).
+/// std::to_chars gives the same text at a quarter of the instructions, but
+/// in a fresh process (one `fcsolve solve`, as campaigns run) its first call
+/// costs about 20 us of cold code, where snprintf is already warm (measured).
 inline void append_piece(std::string& out, double x) {
   if (!std::isfinite(x)) {
     out += "null";
     return;
   }
   char buf[32];
-  out.append(buf, std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 3).ptr);
+  const int n = std::snprintf(buf, sizeof buf, "%.3g", x);
+  out.append(buf, static_cast<std::size_t>(std::max(n, 0)));
 }
 template <class Integer, class = std::enable_if_t<std::is_integral_v<Integer>>>
 void append_piece(std::string& out, Integer i) {
@@ -183,8 +186,8 @@ inline std::string number(double x) {
 
 /// The message of a run: its features and every stage's report (a JSON
 /// object each). It is built on every run; on a run of a few contacts the
-/// temporaries of `a + b + ...` and snprintf cost a tenth of the solve
-/// (measured), hence append().
+/// temporaries of `a + b + ...` cost a tenth of the solve (measured),
+/// hence append().
 inline std::string run_message(const Features& f, const std::vector<StageReport>& stages,
                                const std::string& note) {
   std::string m;
@@ -320,10 +323,6 @@ class StagedRun {
     out.lambda = std::move(best_lambda_);
     out.info.error = best_error_;
     out.info.iterations = iterations_;
-    // The stages' set-ups ran inside the plan's clock: counted once, as
-    // setup (setup + solve is the run's wall time, as for every entry).
-    out.info.setup_seconds = setup_seconds_;
-    out.info.solve_seconds = std::max(clock_.seconds() - setup_seconds_, 0.0);
     out.info.history = std::move(history_);
     out.info.status = best_error_ <= tol()  ? Status::Converged
                       : stopped_            ? Status::Stopped
@@ -332,6 +331,11 @@ class StagedRun {
                       : !std::isfinite(best_error_) ? Status::NumericalError
                                                     : Status::Stalled;
     out.info.message = run_message(f_, stages_, note);
+    // The stages' set-ups ran inside the plan's clock: counted once, as
+    // setup (setup + solve is the run's wall time, message included, as for
+    // every entry).
+    out.info.setup_seconds = setup_seconds_;
+    out.info.solve_seconds = std::max(clock_.seconds() - setup_seconds_, 0.0);
     out.stages = std::move(stages_);
     out.reduced_q_norm = reduced_q_norm_;
     return out;
