@@ -41,6 +41,32 @@ inline const fcsolve::GlobalProblem& global_problem(const std::string& name) {
   return it->second;
 }
 
+/// A rigid cube (mass 1, inertia 1/6 I) resting on `contacts` (1 to 4) of
+/// its bottom corners after one step of h = 0.01 under gravity, sliding
+/// sideways at 0.05 m/s (mu = 0.3): W = H^T M^-1 H, q = H^T v_free. The
+/// small scene of a real-time engine.
+inline fcsolve::LocalProblem resting_cube(int contacts) {
+  using namespace fcsolve;
+  const Eigen::Vector3d corners[] = {{0.5, 0.5, -0.5}, {-0.5, 0.5, -0.5}, {-0.5, -0.5, -0.5},
+                                     {0.5, -0.5, -0.5}};
+  const Eigen::Vector3d frame[] = {Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                                   Eigen::Vector3d::UnitY()};
+  DenseMatrix H(6, 3 * contacts);  // column: (e, p x e), u = e . (v + omega x p)
+  for (int a = 0; a < contacts; ++a)
+    for (int k = 0; k < 3; ++k) H.col(3 * a + k) << frame[k], corners[a].cross(frame[k]);
+  Vector Minv(6);
+  Minv << 1, 1, 1, 6, 6, 6;
+  Vector v_free(6);
+  v_free << 0.05, 0, -9.81 * 0.01, 0, 0, 0;
+  LocalProblem p;
+  p.d = 3;
+  p.W = (H.transpose() * Minv.asDiagonal() * H).sparseView();
+  p.W.makeCompressed();
+  p.q = H.transpose() * v_free;
+  p.mu = Vector::Constant(contacts, 0.3);
+  return p;
+}
+
 /// Reproducible standard-normal entries.
 inline fcsolve::Vector random_vector(fcsolve::Index n, unsigned seed = 1) {
   std::mt19937 gen(seed);

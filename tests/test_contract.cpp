@@ -250,3 +250,25 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
   req.settings.set_text("line_search", "armijo");
   CHECK(req.settings.enumerated<LineSearch>("line_search") == LineSearch::Armijo);
 }
+
+TEST_CASE("settings copied from an entry's cached defaults are independent once set",
+          "[contract][registry]") {
+  const registry::SolverEntry& e = registry::find("nsn-ac");
+  const registry::SettingValues& defaults = registry::default_settings(e);
+  CHECK(&defaults == &registry::default_settings(e));  // built once
+  const long long window = defaults.integer("stall_window");
+  const registry::SettingValues a = defaults;  // shares one map (copy on write)
+  registry::SettingValues b = a;
+  b.set("stall_window", window + 7);
+  b.set_text("line_search", "armijo");
+  CHECK(b.integer("stall_window") == window + 7);
+  CHECK(b.enumerated<LineSearch>("line_search") == LineSearch::Armijo);
+  for (const registry::SettingValues* v : {&defaults, &a}) {
+    CHECK(v->integer("stall_window") == window);
+    CHECK(v->enumerated<LineSearch>("line_search") == NewtonSettings().line_search);
+    CHECK(v->values().size() == e.settings.size());
+  }
+  CHECK(registry::make_request(e).settings.values() == defaults.values());
+  CHECK(registry::SettingValues().values().empty());
+  CHECK_THROWS_AS(registry::SettingValues().integer("stall_window"), UsageError);
+}

@@ -107,25 +107,13 @@ py::object to_python(const SettingValue& v) {
   return std::visit([](const auto& x) -> py::object { return py::cast(x); }, v);
 }
 
-/// The default settings of an entry, built once: copying them per call costs
-/// a third of building them from the declarations (measured: 3.1k
-/// instructions for nsgs' ten settings).
-const SettingValues& default_settings(const SolverEntry& e) {
-  static const std::vector<SettingValues> all = [] {
-    std::vector<SettingValues> v;
-    for (const auto& entry : registry::entries()) v.emplace_back(entry.settings);
-    return v;
-  }();
-  return all[static_cast<std::size_t>(&e - registry::entries().data())];
-}
-
 /// The settings of one solver, typed and checked on every assignment
 /// (fcsolve.Settings).
 struct Settings {
   const SolverEntry* entry;
   SettingValues values;
 
-  explicit Settings(const SolverEntry& e) : entry(&e), values(default_settings(e)) {}
+  explicit Settings(const SolverEntry& e) : entry(&e), values(registry::default_settings(e)) {}
 
   void set(const std::string& name, py::handle value) {
     const SettingSpec& spec = find_setting(*entry, name);

@@ -62,10 +62,13 @@
 #include <fcsolve/solvers/registry.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace fcsolve {
@@ -74,6 +77,7 @@ namespace registry {
 // Defined in solvers/catalog.hpp, which registers this entry among the
 // others; the plan looks its stages up by name when it runs.
 const SolverEntry& find(const std::string& name);
+const SettingValues& default_settings(const SolverEntry& e);
 
 namespace auto_detail {
 
@@ -156,10 +160,62 @@ inline Features local_features(const LocalProblemView& p) {
   return f;
 }
 
-inline std::string number(double x) {
+/// Appends x as printf's "%.3g" writes it ("null" if not finite).
+/// std::to_chars gives the same text at a quarter of the instructions, but
+/// in a fresh process (one `fcsolve solve`, as campaigns run) its first call
+/// costs about 20 us of cold code, where snprintf is already warm (measured).
+inline void append_piece(std::string& out, double x) {
+  if (!std::isfinite(x)) {
+    out += "null";
+    return;
+  }
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return std::isfinite(x) ? std::string(buf) : std::string("null");
+  const int n = std::snprintf(buf, sizeof buf, "%.3g", x);
+  out.append(buf, static_cast<std::size_t>(std::max(n, 0)));
+}
+template <class Integer, class = std::enable_if_t<std::is_integral_v<Integer>>>
+void append_piece(std::string& out, Integer i) {
+  char buf[24];
+  out.append(buf, std::to_chars(buf, buf + sizeof buf, i).ptr);
+}
+inline void append_piece(std::string& out, const char* text) { out += text; }
+inline void append_piece(std::string& out, const std::string& text) { out += text; }
+
+/// Appends text, integers and numbers (as "%.3g") to out, in one buffer:
+/// no temporaries of `a + b + ...`.
+template <class... Pieces>
+void append(std::string& out, const Pieces&... pieces) {
+  (append_piece(out, pieces), ...);
+}
+
+inline std::string number(double x) {
+  std::string out;
+  append_piece(out, x);
+  return out;
+}
+
+/// The message of a run: its features and every stage's report (a JSON
+/// object each). It is built on every run; on a run of a few contacts the
+/// temporaries of `a + b + ...` cost a tenth of the solve (measured),
+/// hence append().
+inline std::string run_message(const Features& f, const std::vector<StageReport>& stages,
+                               const std::string& note) {
+  std::string m;
+  m.reserve(96 + 192 * stages.size() + note.size());
+  append(m, "auto (nc=", f.nc, " d=", f.d, " mu=[", f.mu_min, ",", f.mu_max, "]");
+  if (f.normal_spread != 1) append(m, " W_NN spread=", f.normal_spread);
+  if (f.global)
+    append(m, " n=", f.n, " d*nc/n=", f.contact_ratio, " nnz(M^-1 H)/nnz(H)=", f.inverse_mass_fill);
+  m += "): stages [";
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    const StageReport& s = stages[k];
+    append(m, k ? ", " : "", "{\"stage\": \"", s.name, "\", \"solver\": \"", s.solver,
+           "\", \"seconds\": ", s.seconds, ", \"iterations\": ", s.iterations, ", \"error\": ", s.error,
+           ", \"status\": \"", s.status, "\", \"why\": \"", s.why, "\"}");
+  }
+  m += ']';
+  if (!note.empty()) append(m, "; ", note);
+  return m;
 }
 
 /// What every staged plan shares: the best iterate so far (judged by the
@@ -186,18 +242,17 @@ class StagedRun {
 
   /// Runs one catalogue entry from the best iterate, keeps its result if
   /// it is better, records the stage.
-  const SolveOutcome& stage(const std::string& label, const std::string& entry_name,
-                            double max_time, int max_iter, const std::string& why,
-                            bool history = false, const char* line_search = nullptr,
+  const SolveOutcome& stage(const char* label, const char* entry_name, double max_time, int max_iter,
+                            std::string why, bool history = false, const char* line_search = nullptr,
                             int stall_window = 0) {
-    const SolverEntry& entry = find(entry_name);
-    SolveRequest req = make_request(entry);
+    StageRequest& s = stage_request(entry_name, line_search, stall_window);
+    SolveRequest& req = s.req;
     req.common.tol = tol();
     // A spent budget still asks for a valid (positive) limit: one iteration.
     req.common.max_time = max_time > 0 ? max_time : 1e-9;
     req.common.max_iter = std::max(max_iter, 1);
     req.common.record_history = history || req_.common.record_history;
-    if (req_.common.callback) {
+    if (req_.common.callback && !req.common.callback) {
       // The caller sees one run: iterations and seconds continue across stages.
       req.common.callback = [this](const IterationInfo& it) {
         IterationInfo whole = it;
@@ -206,12 +261,19 @@ class StagedRun {
         return req_.common.callback(whole);
       };
     }
-    if (line_search) req.settings.set("line_search", std::string(line_search));
-    if (stall_window > 0) req.settings.set("stall_window", (long long)stall_window);
     req.r0 = best_;
     req.v0 = best_v_;
     req.reduced_q_norm = reduced_q_norm_;  // FC/I: factorise M for the error scale once
-    last_ = registry::solve(p_, entry, req);
+    // The problem was validated by the registry::solve that called `auto`
+    // (or is the reduction of one, validated once by solve_global).
+    last_ = registry::solve_validated(p_, *s.entry, req);
+    keep(label, s.entry->name, std::move(why));
+    return last_;
+  }
+
+  /// Folds the last stage's result in: iterations, history, the best
+  /// iterate, the stage's report.
+  void keep(const char* label, const std::string& entry_name, std::string why) {
     reduced_q_norm_ = last_.reduced_q_norm;
     last_status_ = last_.info.status;
     iterations_ += last_.info.iterations;
@@ -229,12 +291,6 @@ class StagedRun {
       best_v_ = last_.v;
       best_lambda_ = last_.lambda;
     }
-    if (!reports_.empty()) reports_ += ", ";
-    reports_ += "{\"stage\": \"" + label + "\", \"solver\": \"" + entry_name +
-                "\", \"seconds\": " + number(last_.seconds) +
-                ", \"iterations\": " + std::to_string(last_.info.iterations) +
-                ", \"error\": " + number(last_.info.error) + ", \"status\": \"" +
-                to_string(last_status_) + "\", \"why\": \"" + why + "\"}";
     StageReport s;
     s.name = label;
     s.solver = entry_name;
@@ -242,20 +298,41 @@ class StagedRun {
     s.iterations = last_.info.iterations;
     s.error = last_.info.error;
     s.status = to_string(last_status_);
-    s.why = why;
+    s.why = std::move(why);
     stages_.push_back(std::move(s));
-    return last_;
+  }
+
+  /// A stage's request: the entry's default settings (copied once per run
+  /// and entry configuration, not rebuilt per stage) with the stage's line
+  /// search and stall window.
+  struct StageRequest {
+    const SolverEntry* entry;
+    const char* line_search;
+    int stall_window;
+    SolveRequest req;
+  };
+  StageRequest& stage_request(const char* entry_name, const char* line_search, int stall_window) {
+    const auto same = [](const char* a, const char* b) { return a == b || (a && b && !std::strcmp(a, b)); };
+    for (StageRequest& s : requests_)
+      if (s.entry->name == entry_name && same(s.line_search, line_search) && s.stall_window == stall_window)
+        return s;
+    const SolverEntry& entry = find(entry_name);
+    StageRequest s{&entry, line_search, stall_window, SolveRequest()};
+    s.req.settings = default_settings(entry);
+    if (line_search) s.req.settings.set("line_search", std::string(line_search));
+    if (stall_window > 0) s.req.settings.set("stall_window", (long long)stall_window);
+    requests_.push_back(std::move(s));
+    return requests_.back();
   }
 
   SolveOutcome finish(const std::string& note = "") {
     SolveOutcome out;
-    out.r = best_;
-    out.v = best_v_;
-    out.lambda = best_lambda_;
+    // The run ends here: its iterates move out.
+    out.r = std::move(best_);
+    out.v = std::move(best_v_);
+    out.lambda = std::move(best_lambda_);
     out.info.error = best_error_;
     out.info.iterations = iterations_;
-    out.info.setup_seconds = setup_seconds_;
-    out.info.solve_seconds = clock_.seconds();
     out.info.history = std::move(history_);
     out.info.status = best_error_ <= tol()  ? Status::Converged
                       : stopped_            ? Status::Stopped
@@ -263,14 +340,12 @@ class StagedRun {
                       : out_of_iterations() ? Status::MaxIterations
                       : !std::isfinite(best_error_) ? Status::NumericalError
                                                     : Status::Stalled;
-    std::string features = "nc=" + std::to_string(f_.nc) + " d=" + std::to_string(f_.d) +
-                           " mu=[" + number(f_.mu_min) + "," + number(f_.mu_max) + "]";
-    if (f_.normal_spread != 1) features += " W_NN spread=" + number(f_.normal_spread);
-    if (f_.global)
-      features += " n=" + std::to_string(f_.n) + " d*nc/n=" + number(f_.contact_ratio) +
-                  " nnz(M^-1 H)/nnz(H)=" + number(f_.inverse_mass_fill);
-    out.info.message = "auto (" + features + "): stages [" + reports_ + "]";
-    if (!note.empty()) out.info.message += "; " + note;
+    out.info.message = run_message(f_, stages_, note);
+    // The stages' set-ups ran inside the plan's clock: counted once, as
+    // setup (setup + solve is the run's wall time, message included, as for
+    // every entry).
+    out.info.setup_seconds = setup_seconds_;
+    out.info.solve_seconds = std::max(clock_.seconds() - setup_seconds_, 0.0);
     out.stages = std::move(stages_);
     out.reduced_q_norm = reduced_q_norm_;
     return out;
@@ -288,8 +363,8 @@ class StagedRun {
   double setup_seconds_ = 0;
   bool stopped_ = false;
   std::vector<double> history_;
-  std::string reports_;
   std::vector<StageReport> stages_;
+  std::vector<StageRequest> requests_;  ///< a few: one per entry configuration
   double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
 
@@ -311,7 +386,8 @@ class Plan : private StagedRun<LocalProblemView> {
  public:
   Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f) : StagedRun(p, req, f) {
     // The starting point's own error: a stage never returns worse than it.
-    const Vector u = p.W * best_ + p.q;
+    // From r = 0 (no warm start) u is q: no product with W.
+    const Vector u = req.r0.size() ? Vector(p.W * best_ + p.q) : Vector(p.q);
     best_error_ = local_error_report(p, best_, u).error;
     f_.normal_spread = normal_diagonal_spread(p);
   }
@@ -319,8 +395,9 @@ class Plan : private StagedRun<LocalProblemView> {
   SolveOutcome run() {
     if (best_error_ <= tol()) return finish("the starting point already meets tol");
     if (f_.nc <= kTinyContacts) {
-      stage("nsgs", "nsgs", budget(0.5), std::min(kTinySweeps, max_iter_left()),
-            "nc <= " + std::to_string(kTinyContacts) + ": sweeps are cheapest");
+      std::string why;
+      append(why, "nc <= ", kTinyContacts, ": sweeps are cheapest");
+      stage("nsgs", "nsgs", budget(0.5), std::min(kTinySweeps, max_iter_left()), std::move(why));
       if (done()) return finish();
       return robust_tail("nsgs did not reach tol");
     }
@@ -509,6 +586,7 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
   Stopwatch clock;
   GlobalReduction<DefaultBackend> reduction(p);
   const LocalProblemView local(reduction.local());
+  validate(local);  // once: the stages skip it (StagedRun::stage)
   SolveRequest inner = req;
   inner.common.max_time = req.common.max_time - clock.seconds();
   SolveOutcome out = Plan(local, inner, f).run();

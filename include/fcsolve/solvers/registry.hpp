@@ -212,14 +212,12 @@ inline void check_returned(const Vector& x, Index size, const std::string& solve
                            std::to_string(x.size()) + " entries, expected " + std::to_string(size));
 }
 
-}  // namespace detail
-
-/// Solves FC/II with the named solver.
-inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
-  Stopwatch clock;
-  detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
-  validate(p);
-  detail::check_warm_start(req.r0, p.size(), "r0");
+/// registry::solve on FC/II after its checks of the request and problem:
+/// runs the entry (on the symmetric part of W when it needs one) and judges
+/// its r by the recomputed FCLIB error; out.seconds counts from `clock`.
+inline SolveOutcome run_checked(const LocalProblemView& p, const SolverEntry& e, const SolveRequest& req,
+                                const Stopwatch& clock) {
+  check_warm_start(req.r0, p.size(), "r0");
   if (!e.solve_local) throw UsageError("solver '" + e.name + "' does not solve local problems");
   SolveOutcome out;
   std::string note;
@@ -234,14 +232,72 @@ inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const
   } else {
     out = e.solve_local(p, req);
   }
-  detail::check_returned(out.r, p.size(), e.name, "r");
+  check_returned(out.r, p.size(), e.name, "r");
   out.u = p.W * out.r + p.q;
-  detail::enforce_tolerance(out, local_error_report(p, out.r, out.u).error, req.common.tol);
+  enforce_tolerance(out, local_error_report(p, out.r, out.u).error, req.common.tol);
   if (!note.empty()) out.info.message = note + (out.info.message.empty() ? "" : "; " + out.info.message);
   out.solver = e.name;
   out.seconds = clock.seconds();
   return out;
 }
+
+}  // namespace detail
+
+/// Solves FC/II with the named solver.
+inline SolveOutcome solve(const LocalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
+  Stopwatch clock;
+  detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
+  validate(p);
+  return detail::run_checked(p, e, req, clock);
+}
+
+/// solve() without validate(p), for a staged entry (`auto`) whose problem
+/// registry::solve already validated: its stages would otherwise check the
+/// same data again each (O(nnz), and a few thousand instructions of strings
+/// on a problem of a few contacts). Every other check, the run and the
+/// recomputed error are solve()'s.
+inline SolveOutcome solve_validated(const LocalProblemView& p, const SolverEntry& e,
+                                    const SolveRequest& req) {
+  detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
+  return detail::run_checked(p, e, req, Stopwatch());
+}
+
+namespace detail {
+
+/// registry::solve on FC/I after check_common and validate(p): natively if
+/// the entry can, else by reduction to FC/II and recovery of v (and lambda).
+template <class Backend>
+SolveOutcome run_checked(const GlobalProblemView& p, const SolverEntry& e, const SolveRequest& req,
+                         const Stopwatch& clock) {
+  check_warm_start(req.r0, p.size(), "r0");
+  check_warm_start(req.v0, p.num_dofs(), "v0");
+  SolveOutcome out;
+  if (e.solves_global_natively()) {
+    out = e.solve_global(p, req);
+  } else {
+    if (!e.solve_local) throw UsageError("solver '" + e.name + "' has no entry point");
+    out = solve_by_reduction<Backend>(p, [&](const LocalProblemView& reduced) {
+      Stopwatch inner;
+      validate(reduced);
+      return run_checked(reduced, e, req, inner);
+    });
+  }
+  check_returned(out.r, p.size(), e.name, "r");
+  check_returned(out.v, p.num_dofs(), e.name, "v");
+  // The error scale: what the entry or the caller already computed, else one
+  // factorisation of M (GlobalReduction without W) here.
+  if (out.reduced_q_norm < 0) out.reduced_q_norm = req.reduced_q_norm;
+  if (out.reduced_q_norm < 0)
+    out.reduced_q_norm = GlobalReduction<Backend>(p, /*form_W=*/false).free_velocity_norm();
+  out.u = p.H.transpose() * out.v + p.w;
+  const GlobalErrorReport rep = global_error_report(p, out.reduced_q_norm, out.r, out.v, out.lambda);
+  enforce_tolerance(out, rep.error, req.common.tol);
+  out.solver = e.name;
+  out.seconds = clock.seconds();
+  return out;
+}
+
+}  // namespace detail
 
 /// Solves FC/I with the named solver: natively if the entry can, else by
 /// reduction to FC/II and recovery of v (and lambda).
@@ -250,29 +306,14 @@ SolveOutcome solve(const GlobalProblemView& p, const SolverEntry& e, const Solve
   Stopwatch clock;
   detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
   validate(p);
-  detail::check_warm_start(req.r0, p.size(), "r0");
-  detail::check_warm_start(req.v0, p.num_dofs(), "v0");
-  SolveOutcome out;
-  if (e.solves_global_natively()) {
-    out = e.solve_global(p, req);
-  } else {
-    if (!e.solve_local) throw UsageError("solver '" + e.name + "' has no entry point");
-    out = solve_by_reduction<Backend>(
-        p, [&](const LocalProblemView& reduced) { return solve(reduced, e, req); });
-  }
-  detail::check_returned(out.r, p.size(), e.name, "r");
-  detail::check_returned(out.v, p.num_dofs(), e.name, "v");
-  // The error scale: what the entry or the caller already computed, else one
-  // factorisation of M (GlobalReduction without W) here.
-  if (out.reduced_q_norm < 0) out.reduced_q_norm = req.reduced_q_norm;
-  if (out.reduced_q_norm < 0)
-    out.reduced_q_norm = GlobalReduction<Backend>(p, /*form_W=*/false).free_velocity_norm();
-  out.u = p.H.transpose() * out.v + p.w;
-  const GlobalErrorReport rep = global_error_report(p, out.reduced_q_norm, out.r, out.v, out.lambda);
-  detail::enforce_tolerance(out, rep.error, req.common.tol);
-  out.solver = e.name;
-  out.seconds = clock.seconds();
-  return out;
+  return detail::run_checked<Backend>(p, e, req, clock);
+}
+
+/// solve() on FC/I without validate(p): see the FC/II solve_validated().
+template <class Backend = DefaultBackend>
+SolveOutcome solve_validated(const GlobalProblemView& p, const SolverEntry& e, const SolveRequest& req) {
+  detail::check_common(req.common.tol, req.common.max_iter, req.common.max_time);
+  return detail::run_checked<Backend>(p, e, req, Stopwatch());
 }
 
 }  // namespace registry

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -81,18 +82,24 @@ inline std::string format_value(const SettingValue& v) {
 }
 
 /// Settings of one solver: every declared knob has a value (its default
-/// unless set), and only declared knobs exist.
+/// unless set), and only declared knobs exist. Copies share their values
+/// until one of them is set (copy on write): a request made from an entry's
+/// cached defaults (registry::default_settings) copies no map.
 class SettingValues {
  public:
+  using Map = std::map<std::string, SettingValue>;
+
   SettingValues() = default;
-  explicit SettingValues(const std::vector<SettingSpec>& specs) : specs_(&specs) {
-    for (const auto& s : specs) values_[s.name] = s.default_value;
+  explicit SettingValues(const std::vector<SettingSpec>& specs)
+      : specs_(&specs), values_(std::make_shared<Map>()) {
+    for (const auto& s : specs) (*values_)[s.name] = s.default_value;
   }
 
   /// Sets a typed value (ints are accepted for reals, 0/1 for booleans).
   void set(const std::string& name, const SettingValue& value) {
     const SettingSpec& s = spec(name);
-    values_[name] = coerce(s, value);
+    SettingValue checked = coerce(s, value);
+    writable()[name] = std::move(checked);
   }
   /// Parses a textual value ("1e-3", "42", "true", "natural").
   void set_text(const std::string& name, const std::string& text) {
@@ -138,13 +145,23 @@ class SettingValues {
   const std::string& choice(const std::string& name) const {
     return std::get<std::string>(get(name));
   }
-  const std::map<std::string, SettingValue>& values() const { return values_; }
-  bool declares(const std::string& name) const { return values_.count(name) > 0; }
+  const Map& values() const {
+    static const Map none;
+    return values_ ? *values_ : none;
+  }
+  bool declares(const std::string& name) const { return values().count(name) > 0; }
 
  private:
+  /// The map, this object's own before it changes (copy on write).
+  Map& writable() {
+    if (!values_) values_ = std::make_shared<Map>();
+    else if (values_.use_count() > 1) values_ = std::make_shared<Map>(*values_);
+    return *values_;
+  }
   const SettingValue& get(const std::string& name) const {
-    auto it = values_.find(name);
-    if (it == values_.end()) throw UsageError("setting '" + name + "' is not declared");
+    const Map& v = values();
+    auto it = v.find(name);
+    if (it == v.end()) throw UsageError("setting '" + name + "' is not declared");
     return it->second;
   }
   const SettingSpec& spec(const std::string& name) const {
@@ -202,7 +219,7 @@ class SettingValues {
   }
 
   const std::vector<SettingSpec>* specs_ = nullptr;
-  std::map<std::string, SettingValue> values_;
+  std::shared_ptr<Map> values_;  ///< null: no knobs (a default-made object)
 };
 
 }  // namespace registry
