@@ -77,7 +77,7 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
       throw UsageError("AdmmGlobal: relaxation must lie in (0, 2)");
     problem_.emplace(validated(p, d));
     factorize_mass(p);
-    for (Vector* x : {&r_, &rh_, &r_prev_, &xi_, &xih_, &xi_prev_, &s_, &u_, &x_, &best_r_, &t_})
+    for (Vector* x : {&r_, &rh_, &r_prev_, &xi_, &xih_, &xi_prev_, &s_, &u_, &best_r_, &t_})
       x->setZero(p.size());
     for (Vector* x : {&v_, &b_, &best_v_}) x->setZero(p.num_dofs());
     factorization_.solve(Vector(p.f), free_velocity_);
@@ -101,10 +101,9 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
     update_u();
     const double error = shift_and_error();
     // xi starts as u + s projected on K*: the slack the warm start implies
-    x_ = u_ + s_;
     for (Index c = 0; c < problem_->num_contacts(); ++c)
-      xi_.template segment<d>(c * d) =
-          x_.template segment<d>(c * d) + Cone::project(Vec(-x_.template segment<d>(c * d)), problem_->mu[c]);
+      xi_.template segment<d>(c * d) = Cone::project_dual(
+          Vec(u_.template segment<d>(c * d) + s_.template segment<d>(c * d)), problem_->mu[c]);
     this->run(error, clock);
     r = best_r_;
     v = best_v_;
@@ -253,7 +252,7 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
   std::optional<GlobalProblemView> problem_;
   std::optional<GlobalErrorEvaluator<Cone>> error_;
   GlobalAdmmFactorization<Backend> factorization_;
-  Vector r_, rh_, r_prev_, xi_, xih_, xi_prev_, s_, u_, x_, best_r_, t_;
+  Vector r_, rh_, r_prev_, xi_, xih_, xi_prev_, s_, u_, best_r_, t_;
   Vector v_, b_, best_v_, free_velocity_;
   double q_norm_ = 0;
 };
