@@ -131,9 +131,13 @@ class AdmmGlobal : public AdmmLoop<AdmmGlobal<Cone, Backend>> {
   bool factorize(double rho) { return factorization_.factorize(rho); }
   /// The best r with the velocity that balances it, v = M^-1 (H r + f),
   /// when that is no worse: ADMM's own v balances r only up to the dual
-  /// residual, and a restart from r starts from this v.
+  /// residual, which can leave the best iterate above tol. Not when the
+  /// best iterate already meets tol: its own v balances r to tol, and M's
+  /// refactorisation costs as much as 30 to 40 iterations on large elastic
+  /// bodies (18-27 s of 115-145 at 10^5 contacts, docs/results.md). A
+  /// restart balances its r itself (solve()).
   void finish_solve() {
-    if (best_error_ == 0 || !balanced_velocity(best_r_, v_)) return;
+    if (best_error_ <= settings_.tol || !balanced_velocity(best_r_, v_)) return;
     r_ = best_r_;
     update_u();
     const double error = shift_and_error();
