@@ -17,7 +17,12 @@
 #include <fcsolve/core/solver_contract.hpp>
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/problem/reduction.hpp>
-#include <fcsolve/solvers/catalog.hpp>
+#include <fcsolve/newton.hpp>
+#include <fcsolve/nipm.hpp>
+#include <fcsolve/nsgs.hpp>
+#include <fcsolve/ppa.hpp>
+#include <fcsolve/vi.hpp>
+#include "test_catalogue.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -166,7 +171,7 @@ TEST_CASE("every catalogue entry honours the solver contract", "[contract][catal
   const std::vector<Case> cases = contract_cases();
   const double tol = 1e-8;
   int applicable = 0;
-  for (const auto& e : registry::entries()) {
+  for (const auto& e : fcsolve_test::catalogue_entries()) {
     for (const auto& c : cases) {
       INFO("solver " << e.name << " on " << c.name);
       registry::SolveRequest req = registry::make_request(e);
@@ -224,7 +229,7 @@ TEST_CASE("every catalogue entry honours the solver contract", "[contract][catal
       }
     }
   }
-  CHECK(applicable >= int(registry::entries().size()));  // each applies somewhere
+  CHECK(applicable >= int(fcsolve_test::catalogue_entries().size()));  // each applies somewhere
 }
 
 TEST_CASE("every settings enum parses what its to_string writes, and nothing else",
@@ -243,7 +248,7 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
                                           ContactOrdering::Coloured});
   round_trip(std::vector<StepRule>{StepRule::SelfAdaptive, StepRule::Fixed});
   // the catalogue offers exactly the enum's names, its default among them
-  const registry::SolverEntry& e = registry::find("nsn-ac");
+  const registry::SolverEntry& e = fcsolve_test::catalogue_find("nsn-ac");
   registry::SolveRequest req = registry::make_request(e);
   CHECK(req.settings.enumerated<LineSearch>("line_search") == NewtonSettings().line_search);
   CHECK(req.settings.enumerated<RhoStrategy>("rho_strategy") == NewtonSettings().rho_strategy);
@@ -253,9 +258,9 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
 
 TEST_CASE("settings copied from an entry's cached defaults are independent once set",
           "[contract][registry]") {
-  const registry::SolverEntry& e = registry::find("nsn-ac");
-  const registry::SettingValues& defaults = registry::default_settings(e);
-  CHECK(&defaults == &registry::default_settings(e));  // built once
+  const registry::SolverEntry& e = fcsolve_test::catalogue_find("nsn-ac");
+  const registry::SettingValues& defaults = fcsolve_test::catalogue_default_settings(e);
+  CHECK(&defaults == &fcsolve_test::catalogue_default_settings(e));  // built once
   const long long window = defaults.integer("stall_window");
   const registry::SettingValues a = defaults;  // shares one map (copy on write)
   registry::SettingValues b = a;

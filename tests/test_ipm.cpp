@@ -8,7 +8,7 @@
 #include "test_support.hpp"
 
 #include <fcsolve/nipm.hpp>
-#include <fcsolve/solvers/catalog.hpp>
+#include "test_catalogue.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -51,9 +51,9 @@ double fclib_error(const GlobalProblem& g, const Vector& r, const Vector& v) {
 
 /// Runs a catalogue entry and checks the status/error contract.
 registry::SolveOutcome run_entry(const GlobalProblem& g, const std::string& name, double tol) {
-  auto req = registry::make_request(registry::find(name));
+  auto req = registry::make_request(fcsolve_test::catalogue_find(name));
   req.common.tol = tol;
-  const registry::SolveOutcome out = registry::solve(GlobalProblemView(g), name, req);
+  const registry::SolveOutcome out = fcsolve_test::solve_named(GlobalProblemView(g), name, req);
   const double independent = fclib_error(g, out.r, out.v);
   CHECK(out.info.error == Approx(independent).margin(1e-14).epsilon(1e-6));
   CHECK(out.info.converged() == (independent <= tol));
@@ -208,9 +208,9 @@ TEST_CASE("2D contacts (d = 2): closed-form one-contact solutions", "[ipm][2d]")
     g.mu = p.mu;
     for (const char* name : {"nipm", "aclm-newton"}) {
       CAPTURE(name);
-      auto req = registry::make_request(registry::find(name));
+      auto req = registry::make_request(fcsolve_test::catalogue_find(name));
       req.common.tol = 1e-10;
-      const auto local = registry::solve(LocalProblemView(p), name, req);
+      const auto local = fcsolve_test::solve_named(LocalProblemView(p), name, req);
       CHECK(local.info.converged());
       CHECK(local_error(p, local.r) <= 1e-10);
       CHECK((local.r - c.r).norm() <= 1e-8);
@@ -242,7 +242,7 @@ TEST_CASE("Where the published NIPM stalls, the recovery steps solve the problem
     CAPTURE(name);
     const fclib::Problem problem = fclib::read_problem(fcsolve_test::bundled(name));
     auto solve = [&](bool polish, bool recover, bool recentre) {
-      auto req = registry::make_request(registry::find("nipm"));
+      auto req = registry::make_request(fcsolve_test::catalogue_find("nipm"));
       // What is tested is that each strategy gets there, not within the
       // default 200 iterations: the ACLM fallback needs 298 on Confeti where
       // OpenBLAS picks AVX-512 kernels (UMFPACK's BLAS), 200 elsewhere.
@@ -250,7 +250,8 @@ TEST_CASE("Where the published NIPM stalls, the recovery steps solve the problem
       req.settings.set("polish", polish);
       req.settings.set("recover", recover);
       req.settings.set("recentre", recentre);
-      return std::visit([&](const auto& p) { return registry::solve(p, "nipm", req); }, problem);
+      return std::visit([&](const auto& p) { return fcsolve_test::solve_named(p, "nipm", req); },
+                        problem);
     };
     auto independent = [&](const registry::SolveOutcome& out) {
       if (const auto* g = std::get_if<GlobalProblem>(&problem)) return fclib_error(*g, out.r, out.v);
@@ -275,8 +276,8 @@ TEST_CASE("Where the published NIPM stalls, the recovery steps solve the problem
     // Here the polish from the stalled iterate is not enough: re-centring is.
     const auto p = std::get<LocalProblem>(fclib::read_problem(
         fcsolve_test::shared_data_dir() + "/local/Capsules-i97-269.hdf5"));
-    auto req = registry::make_request(registry::find("nipm"));
-    const auto out = registry::solve(LocalProblemView(p), "nipm", req);
+    auto req = registry::make_request(fcsolve_test::catalogue_find("nipm"));
+    const auto out = fcsolve_test::solve_named(LocalProblemView(p), "nipm", req);
     CHECK(out.info.converged());
     CHECK(local_error(p, out.r) <= 1e-8);
     CHECK(out.info.message.find("re-centred NIPM") != std::string::npos);
@@ -289,8 +290,8 @@ TEST_CASE("The IPM works on the reduced form W as well", "[ipm][local][fclib]") 
     const auto g = std::get<GlobalProblem>(fclib::read_problem(fcsolve_test::bundled(name)));
     GlobalReduction<DefaultBackend> red(g);
     for (const char* solver : {"nipm", "aclm-newton"}) {
-      auto req = registry::make_request(registry::find(solver));
-      const auto out = registry::solve(LocalProblemView(red.local()), solver, req);
+      auto req = registry::make_request(fcsolve_test::catalogue_find(solver));
+      const auto out = fcsolve_test::solve_named(LocalProblemView(red.local()), solver, req);
       CHECK(out.info.converged());
       CHECK(local_error(red.local(), out.r) <= 1e-8);
     }
@@ -298,8 +299,8 @@ TEST_CASE("The IPM works on the reduced form W as well", "[ipm][local][fclib]") 
   for (const char* name : {"Capsules-i101-404.hdf5", "Rover1039.hdf5", "BoxesStack1-i100000-32.hdf5"}) {
     CAPTURE(name);
     const auto p = std::get<LocalProblem>(fclib::read_problem(fcsolve_test::bundled(name)));
-    auto req = registry::make_request(registry::find("nipm"));
-    const auto out = registry::solve(LocalProblemView(p), "nipm", req);
+    auto req = registry::make_request(fcsolve_test::catalogue_find("nipm"));
+    const auto out = fcsolve_test::solve_named(LocalProblemView(p), "nipm", req);
     // Capsules' W is 2e-3 unsymmetric: solved (LU) against W as given.
     CHECK(out.info.converged() == (local_error(p, out.r) <= 1e-8));
     CHECK(out.info.converged());
@@ -389,10 +390,10 @@ TEST_CASE("Reported convergence always means FCLIB error <= tol", "[ipm][status]
   }
   SECTION("an iteration budget too small") {
     for (const char* name : {"nipm", "aclm-newton", "aclm-fp", "ipm-socqp"}) {
-      auto req = registry::make_request(registry::find(name));
+      auto req = registry::make_request(fcsolve_test::catalogue_find(name));
       req.common.max_iter = 2;
       req.settings.set("polish", false);
-      const auto out = registry::solve(GlobalProblemView(g), name, req);
+      const auto out = fcsolve_test::solve_named(GlobalProblemView(g), name, req);
       CHECK_FALSE(out.info.converged());
       CHECK(out.info.status != Status::NotRun);
       CHECK(out.info.error > 1e-8);
@@ -437,6 +438,6 @@ TEST_CASE("Bad input is a typed exception", "[ipm][input]") {
   frictionless.W = unit_local(0.3, {1, 0, 0}).W;
   frictionless.q = Vector::Ones(3);
   frictionless.mu = Vector::Zero(3);
-  auto req = registry::make_request(registry::find("nipm"));
-  CHECK_THROWS_AS(registry::solve(LocalProblemView(frictionless), "nipm", req), UsageError);
+  auto req = registry::make_request(fcsolve_test::catalogue_find("nipm"));
+  CHECK_THROWS_AS(fcsolve_test::solve_named(LocalProblemView(frictionless), "nipm", req), UsageError);
 }

@@ -9,7 +9,7 @@
 #include "test_support.hpp"
 
 #include <fcsolve/newton.hpp>
-#include <fcsolve/solvers/catalog.hpp>
+#include "test_catalogue.hpp"
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
@@ -326,7 +326,7 @@ TEST_CASE("Newton: warm start, callback, history and bad input", "[newton][api]"
 
 TEST_CASE("Newton catalogue entries solve through the registry", "[newton][catalogue]") {
   std::set<std::string> names;
-  for (const auto& e : registry::entries())
+  for (const auto& e : fcsolve_test::catalogue_entries())
     if (e.family == "newton") names.insert(e.name);
   for (const char* n : {"nsn-ac", "nsn-jm", "nsn-nm", "nsn-fb", "nsn-ac-hybrid", "nsn-ac-global",
                         "nsn-jm-global", "nsn-nm-global", "nsn-fb-global"})
@@ -335,7 +335,7 @@ TEST_CASE("Newton catalogue entries solve through the registry", "[newton][catal
   const GlobalProblem global = fclib::read_global(fcsolve_test::bundled("Box_Stacks-i0035-31-0.hdf5"));
   for (const char* n : {"nsn-ac", "nsn-jm", "nsn-nm", "nsn-fb", "nsn-ac-hybrid"}) {
     INFO(n);
-    const auto& e = registry::find(n);
+    const auto& e = fcsolve_test::catalogue_find(n);
     registry::SolveRequest req = registry::make_request(e);
     const auto out = registry::solve(local, e, req);
     CHECK(out.info.converged());
@@ -345,7 +345,7 @@ TEST_CASE("Newton catalogue entries solve through the registry", "[newton][catal
   }
   for (const char* n : {"nsn-ac-global", "nsn-fb-global"}) {
     INFO(n);
-    const auto& e = registry::find(n);
+    const auto& e = fcsolve_test::catalogue_find(n);
     registry::SolveRequest req = registry::make_request(e);
     req.settings.set_text("line_search", "armijo");
     const auto out = registry::solve(GlobalProblemView(global), e, req);
@@ -359,12 +359,12 @@ TEST_CASE("Newton catalogue entries solve through the registry", "[newton][catal
     g.G.insert(1, 0) = 1;  // v_1 = 0
     g.G.makeCompressed();
     g.b = Vector::Zero(1);
-    const auto& e = registry::find("nsn-ac-global");
+    const auto& e = fcsolve_test::catalogue_find("nsn-ac-global");
     const auto out = registry::solve(GlobalProblemView(g), e, registry::make_request(e));
     CHECK(out.info.converged());
     CHECK(std::abs(out.v[1]) <= 1e-12);
     CHECK(out.lambda.size() == 1);
   }
-  registry::SolveRequest req = registry::make_request(registry::find("nsn-ac"));
+  registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find("nsn-ac"));
   CHECK_THROWS_AS(req.settings.set_text("rho_strategy", "magic"), UsageError);
 }

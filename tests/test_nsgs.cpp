@@ -8,7 +8,7 @@
 #include <fcsolve/local/alart_curnier_backtracking.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/nsgs.hpp>
-#include <fcsolve/solvers/catalog.hpp>
+#include "test_catalogue.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -335,7 +335,7 @@ TEST_CASE("nsgs fails cleanly when a contact has no solution", "[nsgs]") {
 
 TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs][registry]") {
   std::set<std::string> names;
-  for (const auto& e : registry::entries())
+  for (const auto& e : fcsolve_test::catalogue_entries())
     if (e.family == "nsgs") names.insert(e.name);
   for (const char* n : {"nsgs", "nsgs-proj", "nsgs-proj-iter", "nsgs-exact", "nsgs-ac", "nsgs-fb",
                         "nsgs-hybrid", "psor"})
@@ -345,12 +345,12 @@ TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs]
     const LocalProblem p = fclib::read_local(fcsolve_test::bundled("OneObject-i1028-138.hdf5"));
     for (const auto& name : names) {
       INFO(name);
-      registry::SolveRequest req = registry::make_request(registry::find(name));
+      registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find(name));
       req.common.tol = 1e-7;
       req.common.max_time = 20;
       req.settings.set_text("shuffle", "true");
       req.settings.set_text("omega", name == "psor" ? "0.9" : "1");
-      const registry::SolveOutcome out = registry::solve(LocalProblemView(p), name, req);
+      const registry::SolveOutcome out = fcsolve_test::solve_named(LocalProblemView(p), name, req);
       CHECK(out.info.converged());
       CHECK(local_error(p, out.r) <= 1e-7);
     }
@@ -360,9 +360,9 @@ TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs]
     for (const auto& name : names)
       for (const LocalProblem* p : {&p2, &p1}) {
         INFO(name << ", d = " << p->d);
-        registry::SolveRequest req = registry::make_request(registry::find(name));
+        registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find(name));
         req.common.max_time = 20;
-        const registry::SolveOutcome out = registry::solve(LocalProblemView(*p), name, req);
+        const registry::SolveOutcome out = fcsolve_test::solve_named(LocalProblemView(*p), name, req);
         CHECK(out.info.converged());
         CHECK(local_error(*p, out.r) <= 1e-8);
       }
@@ -375,10 +375,10 @@ TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs]
       // spheres-in-a-box converges slowly (6e-8 after 20 s; Siconos' NSGS
       // stays above 1e-6): its check here is 1e-4
       const bool slow = name.find("spheres-in-a-box") != std::string::npos;
-      registry::SolveRequest req = registry::make_request(registry::find("nsgs"));
+      registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find("nsgs"));
       req.common.tol = slow ? 1e-4 : 1e-8;
       req.common.max_iter = 100000;
-      const registry::SolveOutcome out = registry::solve(GlobalProblemView(p), "nsgs", req);
+      const registry::SolveOutcome out = fcsolve_test::solve_named(GlobalProblemView(p), "nsgs", req);
       const GlobalReduction<DefaultBackend> reduction(p, false);
       const GlobalErrorReport rep =
           global_error_report(p, reduction.free_velocity_norm(), out.r, out.v, out.lambda);

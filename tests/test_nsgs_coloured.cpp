@@ -6,7 +6,7 @@
 
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/nsgs.hpp>
-#include <fcsolve/solvers/catalog.hpp>
+#include "test_catalogue.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -254,11 +254,11 @@ TEST_CASE("coloured nsgs: warm start, budgets, stall and the catalogue", "[nsgs]
   }
   SECTION("the catalogue's nsgs entry") {
     const LocalProblem q = fclib::read_local(fcsolve_test::bundled("OneObject-i1028-138.hdf5"));
-    registry::SolveRequest req = registry::make_request(registry::find("nsgs"));
+    registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find("nsgs"));
     req.common.tol = 1e-7;
     req.settings.set_text("ordering", "coloured");
     req.settings.set_text("threads", "2");
-    const registry::SolveOutcome out = registry::solve(LocalProblemView(q), "nsgs", req);
+    const registry::SolveOutcome out = fcsolve_test::solve_named(LocalProblemView(q), "nsgs", req);
     CHECK(out.info.converged());
     CHECK(local_error(q, out.r) <= 1e-7);
   }

@@ -15,7 +15,7 @@
 #include <fcsolve/ppa.hpp>
 #include <fcsolve/scenes/rigid_stepper.hpp>
 #include <fcsolve/scenes/sphere_pile.hpp>
-#include <fcsolve/solvers/catalog.hpp>
+#include "test_catalogue.hpp"
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
@@ -332,7 +332,7 @@ TEST_CASE("ppa: Newton's compute() on a subproblem of the same pattern rereads o
 
 TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]") {
   std::set<std::string> names, all;
-  for (const auto& e : registry::entries())
+  for (const auto& e : fcsolve_test::catalogue_entries())
     if (e.family == "ppa") {
       all.insert(e.name);
       if (e.solve_local) names.insert(e.name);
@@ -344,7 +344,7 @@ TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]"
   for (const auto& name : names)
     for (const LocalProblem* p : {&capsules, &p2, &p1}) {
       INFO(name << ", d = " << p->d);
-      const auto& e = registry::find(name);
+      const auto& e = fcsolve_test::catalogue_find(name);
       registry::SolveRequest req = registry::make_request(e);
       req.common.max_time = 20;
       req.settings.set_text("sigma", "2");
@@ -358,7 +358,7 @@ TEST_CASE("ppa catalogue entries solve through the registry", "[ppa][catalogue]"
       CHECK(again.info.iterations <= 2);
     }
   const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("GFC3D_Example1.hdf5"));
-  const auto& e = registry::find("ppa");
+  const auto& e = fcsolve_test::catalogue_find("ppa");
   const registry::SolveOutcome out = registry::solve(GlobalProblemView(g), e, registry::make_request(e));
   CHECK(out.info.converged());  // FC/I by the registry's reduction
   registry::SolveRequest req = registry::make_request(e);
@@ -446,7 +446,7 @@ TEST_CASE("global Newton's contact compliance: 0 changes nothing, c > 0 solves F
 }
 
 TEST_CASE("ppa-global through the registry: native FC/I, global-only", "[ppa][global][catalogue]") {
-  const auto& e = registry::find("ppa-global");
+  const auto& e = fcsolve_test::catalogue_find("ppa-global");
   CHECK(e.solves_global_natively());
   CHECK_FALSE(e.solve_local);
   const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("GFC3D_Example1.hdf5"));
@@ -458,7 +458,7 @@ TEST_CASE("ppa-global through the registry: native FC/I, global-only", "[ppa][gl
   // FC/II input is refused, as by the other global-only entries (nsn-ac-global)
   const LocalProblem p = fclib::read_local(fcsolve_test::bundled("Capsules-i101-404.hdf5"));
   CHECK_THROWS_AS(registry::solve(LocalProblemView(p), e, req), UsageError);
-  CHECK_THROWS_AS(registry::solve(LocalProblemView(p), registry::find("nsn-ac-global"), req), UsageError);
+  CHECK_THROWS_AS(fcsolve_test::solve_named(LocalProblemView(p), "nsn-ac-global", req), UsageError);
 }
 
 TEST_CASE("ppa-global: typed errors, budgets and the best iterate", "[ppa][global][api]") {
