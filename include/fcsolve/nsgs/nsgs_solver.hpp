@@ -640,11 +640,16 @@ class Nsgs {
 
   const SolverInfo& finish(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u, Status status,
                            const Stopwatch& clock) {
-    // On success r is the last (and best) iterate; otherwise return the best
-    // one seen, which is finite.
-    if (status != Status::Converged) r = best_;
-    storage_.multiply(r, u);
-    u += problem_->q;
+    // On success r is the last (and best) iterate, and the full error that
+    // accepted it left work_ = W r + q; otherwise return the best one seen,
+    // which is finite.
+    if (status == Status::Converged) {
+      u = work_;
+    } else {
+      r = best_;
+      storage_.multiply(r, u);
+      u += problem_->q;
+    }
     info_.status = status;
     info_.error = best_error_;
     if (local_failures_ > 0)
