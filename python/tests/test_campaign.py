@@ -98,6 +98,20 @@ def test_repeat_keeps_the_fastest_time(tmp_path, trivial, monkeypatch):
     assert (tmp_path / "calls").read_text() == "3"
 
 
+def test_short_runs_are_timed_again_in_a_hot_loop(tmp_path, trivial, monkeypatch):
+    monkeypatch.setenv("FAKE_COUNT_FILE", str(tmp_path / "calls"))
+    # 1 s is above the threshold: one fresh run
+    _, (row,), _ = bench(trivial[:1], tmp_path / "cold", solvers="slowfirst", hot_below=0.5)
+    assert row["seconds"] == 1.0 and (tmp_path / "calls").read_text() == "1"
+    assert "hot loop" not in row["message"]
+    (tmp_path / "calls").unlink()
+    # below it: the same command again with --repeat N, its (faster) time counts
+    _, (row,), _ = bench(trivial[:1], tmp_path / "hot", solvers="slowfirst", hot_below=2.0)
+    assert row["seconds"] == 0.25 and row["failure"] == "converged"
+    assert (tmp_path / "calls").read_text() == "2"
+    assert "hot loop: fastest of 3 solves in one process" in row["message"]
+
+
 def test_timeout_kills_the_process_group(tmp_path, trivial, monkeypatch):
     pid_file = tmp_path / "child.pid"
     monkeypatch.setenv("FAKE_PID_FILE", str(pid_file))

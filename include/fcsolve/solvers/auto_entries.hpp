@@ -56,6 +56,7 @@
 // split so that later stages keep a share of it.
 #pragma once
 
+#include <fcsolve/core/short_number.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/problem/reduced_density.hpp>
 #include <fcsolve/problem/reduction.hpp>
@@ -160,19 +161,10 @@ inline Features local_features(const LocalProblemView& p) {
   return f;
 }
 
-/// Appends x as printf's "%.3g" writes it ("null" if not finite).
-/// std::to_chars gives the same text at a quarter of the instructions, but
-/// in a fresh process (one `fcsolve solve`, as campaigns run) its first call
-/// costs about 20 us of cold code, where snprintf is already warm (measured).
-inline void append_piece(std::string& out, double x) {
-  if (!std::isfinite(x)) {
-    out += "null";
-    return;
-  }
-  char buf[32];
-  const int n = std::snprintf(buf, sizeof buf, "%.3g", x);
-  out.append(buf, static_cast<std::size_t>(std::max(n, 0)));
-}
+/// Appends x as printf's "%.3g" writes it ("null" if not finite), without
+/// snprintf's exact conversion: the report is built on every run, and on a
+/// run of one contact its numbers cost more than the solve (measured).
+inline void append_piece(std::string& out, double x) { append_short_number(out, x); }
 template <class Integer, class = std::enable_if_t<std::is_integral_v<Integer>>>
 void append_piece(std::string& out, Integer i) {
   char buf[24];
@@ -387,8 +379,8 @@ class Plan : private StagedRun<LocalProblemView> {
   Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f) : StagedRun(p, req, f) {
     // The starting point's own error: a stage never returns worse than it.
     // From r = 0 (no warm start) u is q: no product with W.
-    const Vector u = req.r0.size() ? Vector(p.W * best_ + p.q) : Vector(p.q);
-    best_error_ = local_error_report(p, best_, u).error;
+    best_error_ = req.r0.size() ? local_error_report(p, best_, Vector(p.W * best_ + p.q)).error
+                                : local_error_report(p, best_, p.q).error;
     f_.normal_spread = normal_diagonal_spread(p);
   }
 

@@ -62,6 +62,10 @@ def parser():
     b.add_argument("--repeat", type=int, default=1,
                    help="run each solve N times and keep the fastest time (short runs are noisy); "
                         "default 1")
+    b.add_argument("--hot-below", type=float, default=None, metavar="SECONDS",
+                   help="time solved runs faster than this again as the fastest of many solves "
+                        "in one process (the command's --repeat); 0: fresh processes only; "
+                        "default 0.01")
     b.add_argument("--keep-solutions", action="store_true", help="keep DIR/solutions/*.hdf5")
     b.add_argument("--report", action="store_true", help="then write the report (fcsolve report)")
     r = sub.add_parser("report", help="charts and an HTML page from DIR/results.csv")
@@ -81,7 +85,8 @@ def main(argv=None):
             run_campaign(a.problems, solvers=a.solvers, tols=a.tol, timeout=a.timeout,
                          out_dir=a.out, jobs=a.jobs, dask=a.dask, fcsolve=a.fcsolve,
                          peer_python=a.peer_python, max_iter=a.max_iter, grace=a.grace,
-                         redo=a.redo, keep_solutions=a.keep_solutions, repeat=a.repeat)
+                         redo=a.redo, keep_solutions=a.keep_solutions, repeat=a.repeat,
+                         **({} if a.hot_below is None else dict(hot_below=a.hot_below)))
             if not a.report:
                 return 0
             report_dir = a.out

@@ -13,13 +13,18 @@ from .progress import Progress
 from .results import ResultsFile, run_key
 from .tasks import Task, log_name
 
+# Solved runs faster than this (seconds) are timed again in a hot loop
+# (tasks._hot_loop): sub-millisecond solves are measured hot, not as the
+# first call of a fresh process.
+HOT_BELOW = 0.01
+
 
 def _solution_path(out_dir, task_name):
     return os.path.join(out_dir, "solutions", task_name.replace(".log", ".hdf5"))
 
 
 def plan(problem_files, solver_specs, tols, timeout, out_dir, grace=2.0, max_iter=None,
-         keep_solutions=False, done=frozenset(), repeat=1):
+         keep_solutions=False, done=frozenset(), repeat=1, hot_below=0.0):
     """(tasks still to run, (problem, solver) pairs not supported, (file, why) unreadable)."""
     out_dir = os.path.abspath(out_dir)  # runs may execute elsewhere (Dask workers)
     files = _problems.find_problem_files(problem_files)
@@ -45,7 +50,8 @@ def plan(problem_files, solver_specs, tols, timeout, out_dir, grace=2.0, max_ite
                 t = Task(problem=name, file=os.path.abspath(path), solver=s.name, tol=float(tol),
                          timeout=float(timeout), kill_after=float(timeout) + grace, argv=[],
                          solution="", log_dir=os.path.join(out_dir, "logs"), meta=meta,
-                         keep_solution=keep_solutions, repeat=max(1, int(repeat)))
+                         keep_solution=keep_solutions, repeat=max(1, int(repeat)),
+                         hot_below=float(hot_below))
                 t.solution = os.path.abspath(_solution_path(out_dir, log_name(t)))
                 t.argv = s.command(t.file, tol, timeout, t.solution, max_iter)
                 task_list.append(t)
@@ -76,7 +82,8 @@ def _record(out_dir, entry):
 
 def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_dir="campaign",
                  jobs=None, dask=None, fcsolve=None, peer_python=_solvers.DEFAULT_PEER_PYTHON,
-                 max_iter=None, grace=2.0, redo=(), keep_solutions=False, repeat=1, stream=None):
+                 max_iter=None, grace=2.0, redo=(), keep_solutions=False, repeat=1,
+                 hot_below=HOT_BELOW, stream=None):
     """Runs a campaign and returns {"ran": n, "skipped": n, "csv": path}."""
     stream = stream or sys.stdout
 
@@ -91,7 +98,8 @@ def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_d
         results.drop(set(redo))
     done = results.keys()
     task_list, unsupported, unreadable = plan(problem_files, specs, tols, timeout, out_dir, grace,
-                                              max_iter, keep_solutions, done, repeat)
+                                              max_iter, keep_solutions, done, repeat,
+                                              hot_below)
     skipped = len(done)
     executor = make_executor(jobs, dask)
     say(f"fcsolve bench: {len(task_list)} runs to do ({skipped} already in {results.path}), "
@@ -107,6 +115,7 @@ def run_campaign(problem_files, solvers="all", tols=(1e-8,), timeout=20.0, out_d
         fcsolve_version=_fcsolve_version(fcsolve), executor=executor.describe(),
         solvers=[dict(name=s.name, family=s.family, peer=s.peer) for s in specs],
         tols=[float(t) for t in tols], timeout=timeout, max_iter=max_iter, repeat=repeat,
+        hot_below=hot_below,
         runs=len(task_list)))
     progress = Progress(len(task_list), stream=stream)
     try:

@@ -40,6 +40,12 @@ class Task:
     keep_solution: bool = False
     env: dict = None    # extra environment variables
     repeat: int = 1     # runs of the command; the fastest counts (noise on short runs)
+    hot_below: float = 0.0  # a solved run faster than this is timed again in a hot loop
+
+
+# A hot loop repeats the solve for about this long (at most HOT_MAX_SOLVES).
+HOT_SECONDS = 0.05
+HOT_MAX_SOLVES = 1000
 
 
 def _run(argv, limit, env):
@@ -154,6 +160,31 @@ def _attempt(task):
         return None, "", f"{type(e).__name__}: {e}", 0.0, False
 
 
+def _hot_loop(task, rc, report, seconds):
+    """(seconds, note): a short run timed again as the fastest of many solves
+    in one process (the command's --repeat N), as sub-millisecond solves
+    are measured: the first call of a fresh process pays for code and
+    data touched the first time, which a simulation's time loop does not.
+    With --repeat K the hot loop runs in K processes (one process' layout
+    can be slower throughout) and the fastest counts. The fresh time stays
+    when the command refuses --repeat or ends differently."""
+    n = max(3, min(HOT_MAX_SOLVES, math.ceil(HOT_SECONDS / seconds)))
+    hot = dataclasses.replace(task, argv=list(task.argv) + ["--repeat", str(n)])
+    best = None
+    for _ in range(max(task.repeat, 1)):
+        rc2, out2, _, _, timed_out2 = _attempt(hot)
+        again = None if timed_out2 else _report(out2)
+        if rc2 != rc or again is None or again.get("status") != report.get("status"):
+            break
+        hot_seconds = _solver_seconds(again, 0.0)
+        if hot_seconds > 0:
+            best = hot_seconds if best is None else min(best, hot_seconds)
+    if best is None:
+        return seconds, ""
+    runs = f" (the fastest of {task.repeat} such processes)" if task.repeat > 1 else ""
+    return min(seconds, best), f"hot loop: fastest of {n} solves in one process{runs}"
+
+
 def run_task(task):
     """Runs one task and returns its CSV row (a dict, results.COLUMNS)."""
     os.makedirs(os.path.dirname(task.solution), exist_ok=True)
@@ -173,6 +204,9 @@ def run_task(task):
         if rc2 != rc or again is None or again.get("status") != report.get("status"):
             break
         seconds, wall = min(seconds, _solver_seconds(again, wall2)), min(wall, wall2)
+    hot_note = ""
+    if error is not None and solved(error, task.tol) and 0 < seconds < task.hot_below:
+        seconds, hot_note = _hot_loop(task, rc, report, seconds)
     failure = classify(timed_out=timed_out, returncode=rc, report=report, error=error, tol=task.tol)
     if timed_out:
         note = f"killed after {wall:.3g} s (limit {task.kill_after:g} s)"
@@ -189,7 +223,7 @@ def run_task(task):
     if not task.keep_solution and os.path.exists(task.solution):
         os.remove(task.solution)
     report = report or {}
-    message = "; ".join(m for m in (report.get("message", ""), note) if m)
+    message = "; ".join(m for m in (hot_note, report.get("message", ""), note) if m)
     return dict(
         task.meta, problem=task.problem, solver=task.solver, tol=float(task.tol),
         status=report.get("status", failure), seconds=seconds,
