@@ -329,6 +329,9 @@ TEST_CASE("ADMM on FC/I: budgets, callback, bad input", "[admm][global]") {
     solve_global_checked(admm, g);
     CHECK(admm.info().status == Status::MaxIterations);
     CHECK(admm.info().iterations == 3);
+    // the rho the iterations ended with, though the factor went back to M
+    // to balance the returned r
+    CHECK(admm.rho() > 0);
   }
   SECTION("max_time") {
     admm.settings().max_time = 0;

@@ -41,7 +41,9 @@ class AdmmLoop {
   const SolverInfo& info() const { return info_; }
   /// rho at the end of the last solve (after adaptation), and how many
   /// factorisations of the rho system that solve used (1: rho never changed).
-  double rho() const { return rho_; }
+  /// (AdmmGlobal refactorises M after an unconverged solve; its rho_ then
+  /// reads 0, the value kept here does not.)
+  double rho() const { return last_rho_; }
   int factorizations() const { return factorizations_; }
 
  protected:
@@ -67,6 +69,7 @@ class AdmmLoop {
     } else if (error > settings_.tol) {
       iterate(clock);
     }
+    last_rho_ = rho_;
     self().finish_solve();
     if (best_error_ <= settings_.tol) info_.status = Status::Converged;
     info_.error = best_error_;
@@ -81,7 +84,7 @@ class AdmmLoop {
 
   Settings settings_;
   SolverInfo info_;
-  double rho0_ = 1, rho_ = 1, best_error_ = 0;
+  double rho0_ = 1, rho_ = 1, last_rho_ = 0, best_error_ = 0;
   int factorizations_ = 0;
   bool factorization_ok_ = false;
 

@@ -10,7 +10,8 @@
 // estimate) and f_k a factor multiplied by 10 after a failed inner solve and
 // divided by 10 after one that succeeds in a few iterations (the rules of
 // Siconos' PROX, ibid.); the inner tolerance is max(err_k / 10, tol / nc) in
-// the outer problem's units. A failed inner solve is still taken when it
+// the outer problem's units; an inner Newton that stalls (settings'
+// inner_stall_window) fails early. A failed inner solve is still taken when it
 // lowered the error; otherwise r_k is kept and retried with the larger alpha
 // (a better-conditioned subproblem). Alpha stuck at alpha_max with no step
 // taken is a stall. Success is declared only on the FCLIB error of the
@@ -108,6 +109,8 @@ class ProximalPointLoop {
       typename Inner::Settings& is = inner_.settings();
       is = s.inner;
       is.max_iter = s.inner_max_iter;
+      if constexpr (has_stall_window<typename Inner::Settings>::value)
+        if (s.inner_stall_window > 0) is.stall_window = s.inner_stall_window;
       is.max_time = remaining;
       is.record_history = false;
       is.callback = nullptr;

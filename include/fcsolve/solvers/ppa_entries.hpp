@@ -37,6 +37,10 @@ inline std::vector<SettingSpec> settings_specs() {
                       "an inner solve this short divides alpha's factor by 10", 0, 1e9),
       integer_setting("inner_max_iter", d.inner_max_iter, "iteration cap of each inner solve", 1,
                       1e9),
+      integer_setting("inner_stall_window", d.inner_stall_window,
+                      "an inner Newton solve whose error does not halve in this many iterations "
+                      "fails early (0: Newton's own window; no effect on ppa-nsgs)",
+                      0, 1e9),
   };
 }
 
@@ -51,6 +55,7 @@ void configure(Settings& s, const SolveRequest& req) {
   s.alpha_max = v.real("alpha_max");
   s.fast_inner_iterations = int(v.integer("fast_inner_iterations"));
   s.inner_max_iter = int(v.integer("inner_max_iter"));
+  s.inner_stall_window = int(v.integer("inner_stall_window"));
 }
 
 template <class Solver>
