@@ -26,17 +26,19 @@
 //              the budget before Newton, which crawls there (measured).
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
-//              from the sweeps' iterate (local superlinear convergence),
-//              then, if they stall, the line-searched Newton; each with a
-//              short stall window: it stops early when the error stops
-//              halving.
+//              from the sweeps' iterate (local superlinear convergence);
+//              if they stall, with mu > 0 and unless it ran at 1b, the
+//              nonsmooth interior point (`nipm`), 100 iterations at most,
+//              on a share of the budget (its iteration count barely feels
+//              a singular W: rigid stacks, walls, piles), then the
+//              line-searched Newton; each Newton stage with a short stall
+//              window: it stops early when the error stops halving.
 //   3 sweeps   when Newton stalls or diverges: NSGS sweeps from the best
 //              iterate (robust, monotone in practice), then
 //   4 newton   Newton once more from what the sweeps reached (a Newton
 //              stage often converges from a better start where it stalled),
-//   5 ipm      with mu > 0, if it did not run at 1b: the nonsmooth interior
-//              point (`nipm`), 100 iterations at most, on a share of the
-//              budget (its iteration count barely feels a singular W),
+//   5 ipm      with mu > 0, if it has not run (full steps cut by the time
+//              budget at 2): the interior point as above,
 //   6 proximal the proximal point method (`ppa`): Newton on the
 //              regularised subproblems W + alpha I, robust where W is
 //              singular or badly scaled,
@@ -450,10 +452,23 @@ class Plan : private StagedRun<LocalProblemView> {
   /// cases where full steps do not contract; the globalised Newton (the
   /// entry's Goldstein-Price line search) then takes over from the best
   /// iterate.
+  ///
+  /// When the full steps stall, the interior point runs before the line
+  /// search (once per run, mu > 0): where full steps stall on the rigid
+  /// corpus (box stacks, walls, towers, sphere piles: W singular, many
+  /// contacts per body) `nipm` converged in 11 to 68 iterations on 10 of 13
+  /// problems, in 0.3 to 0.5x the time the Newton stages then took
+  /// (docs/results.md, "auto: the interior point when full Newton steps
+  /// stall"); where it stops short of tol, the line search goes on from
+  /// the better of the two iterates.
   void newton(const std::string& why) {
     stage("newton-full", "nsn-ac", budget(0.5), std::min(kNewtonMaxIter, max_iter_left()),
           why + "; full steps", false, "none", kFullStepStallWindow);
     if (done()) return;
+    if (last_status_ != Status::TimeLimit) {
+      interior_point(std::string("full Newton steps ") + to_string(last_status_));
+      if (done()) return;
+    }
     stage("newton", "nsn-ac", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()),
           std::string("full steps ") + to_string(last_status_) + ": line search",
           false, "goldstein-price", kNewtonStallWindow);
@@ -464,13 +479,15 @@ class Plan : private StagedRun<LocalProblemView> {
   /// iteration count hardly depends on how degenerate the problem is, where
   /// semismooth Newton crawls when W is singular with many contacts per body
   /// (the reactions are not unique) or badly scaled by mass ratios: where
-  /// nipm alone converges on the rigid corpus it takes 3 to 52 iterations
+  /// nipm alone converges on the rigid corpus it takes 3 to 68 iterations
   /// (box stacks of 1000 contacts: 20, 0.14 s, where the Newton stages
-  /// stall at 1e-2 and the proximal stage needs 3 s), so it gets 100; run
-  /// right after the first Newton stall it lost a sphere pile that the
-  /// sweeps and Newton solve next (its 1e-5 iterate was a worse start for
-  /// them), hence after them. The Lorentz-cone map of the IPM needs mu > 0;
-  /// a share of the budget so that the tail keeps the rest.
+  /// stall at 1e-2 and the proximal stage needs 3 s), so it gets 100. Where
+  /// it stops short of tol, its iterate is a good start for Newton on
+  /// heavy-on-light stacks (1e-5 after 100 iterations, then 2 to 4 Newton
+  /// steps to 1e-10); starting the next stages from the iterate before it
+  /// instead cost those 10 s and more (measured, not kept). The Lorentz-cone
+  /// map of the IPM needs mu > 0; a share of the budget so that the tail
+  /// keeps the rest.
   /// Runs at most once (a second run would start from the same centre).
   void interior_point(const std::string& why) {
     if (!(f_.mu_min > 0) || interior_point_ran_) return;
