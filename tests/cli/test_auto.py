@@ -156,6 +156,31 @@ def test_interior_point_stage_on_heavy_on_light_stacks(scene, after, tmp_path):
     assert independent_error(local, sol) <= 1e-8
 
 
+@pytest.mark.parametrize("scene, newton", [
+    # Kapla towers: ~20 contacts per plank, nnz(W) ~16x nnz(H) + nnz(M):
+    # Newton runs on FC/I in (v, r)
+    ("tower", "nsn-ac-global"),
+    # columns of cubes: nnz(W) ~5x, W's factorisation costs no more
+    ("box-stack", "nsn-ac"),
+])
+def test_newton_runs_on_the_cheaper_form_of_a_rigid_fc1(scene, newton, tmp_path):
+    problem, local = tmp_path / "scene.hdf5", tmp_path / "scene-local.hdf5"
+    g = run("generate", scene, "--contacts", 100, "--seed", 5, "--out", problem, "--local-out", local)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(problem, "--max-time", 20, out=sol)
+    assert code == 0 and res["status"] == "converged", res
+    check_stages(res)
+    newton_stages = [st for st in res["stages"] if st["stage"].startswith("newton")]
+    assert newton_stages and all(st["solver"] == newton for st in newton_stages), res["message"]
+    assert independent_error(problem, sol) <= 1e-8
+    # the same scene given as FC/II has only W: Newton on FC/II
+    code, res = solve_json(local, "--max-time", 20, out=sol)
+    assert code == 0 and res["status"] == "converged", res
+    assert all(st["solver"] != "nsn-ac-global" for st in res["stages"]), res["message"]
+    assert independent_error(local, sol) <= 1e-8
+
+
 def test_text_output_names_the_stages():
     p = run("solve", BUNDLED / "OneObject-i1028-138.hdf5")
     assert p.returncode == 0, p.stderr

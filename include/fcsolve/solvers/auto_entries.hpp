@@ -45,7 +45,11 @@
 //   7 sweeps   NSGS for whatever time is left.
 //
 // FC/I is reduced to FC/II (W = H^T M^-1 H) and planned as above when W
-// stays sparse: rigid bodies, M block-diagonal. When M^-1 couples the dofs
+// stays sparse: rigid bodies, M block-diagonal. The sweeps run on W; the
+// Newton and interior-point stages run on FC/I itself in (v, r)
+// (`nsn-ac-global`, `nipm`) when W is much denser than H and M (many
+// contacts per body: towers, walls), since a step's factorisation then
+// costs less there (kNativeLinearAlgebraFill). When M^-1 couples the dofs
 // (an elastic body: W dense, d^2 nc^2 entries) forming W costs more than
 // solving, so the plan stays on FC/I, W never formed: ADMM in (v, r)
 // (`admm-global`, at most kNativeAdmmIterations), then semismooth Newton
@@ -67,7 +71,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -121,6 +124,16 @@ inline constexpr double kSmallInverseMassProduct = 1e5;
 /// 1000), the Newton stages 9 to 16x slower than `nipm`, which was within
 /// 2.2x of the fastest. 30 lies between, on a log scale.
 inline constexpr double kMassSpreadForInteriorPoint = 30;
+/// FC/I reduced to FC/II: from this ratio nnz(W) / (nnz(H) + nnz(M)) on,
+/// the Newton and interior-point stages run on FC/I in (v, r), where a
+/// step factorises a matrix of H's and M's sparsity instead of W's. W
+/// couples every two contacts on one body, so the ratio grows with the
+/// contacts per body. Measured, each solver alone from scratch, 1e-8
+/// (docs/results.md, "auto: Newton and the interior point on FC/I"): box
+/// stacks (ratio 5.4) run as fast on either form; walls (8.5 to 13) 1.1 to
+/// 1.5x and towers (16 to 21) 3 to 3.5x faster on FC/I (nsn-ac-global
+/// against nsn-ac, nipm on FC/I against nipm on W).
+inline constexpr double kNativeLinearAlgebraFill = 8;
 /// Iterations of the interior-point stage (see Plan::interior_point).
 inline constexpr int kInteriorPointIterations = 100;
 /// FC/I solved natively: iterations of the first stage, ADMM in (v, r)
@@ -149,6 +162,8 @@ struct Features {
   double inverse_mass_fill = 1;  ///< nnz(M^-1 H) / nnz(H)
   /// max / min over the contacts of W_NN (FC/II, or FC/I once reduced).
   double normal_spread = 1;
+  /// nnz(W) / (nnz(H) + nnz(M)) (FC/I once reduced; 0 otherwise).
+  double reduced_fill = 0;
 };
 
 inline Features local_features(const LocalProblemView& p) {
@@ -200,6 +215,7 @@ inline std::string run_message(const Features& f, const std::vector<StageReport>
   if (f.normal_spread != 1) append(m, " W_NN spread=", f.normal_spread);
   if (f.global)
     append(m, " n=", f.n, " d*nc/n=", f.contact_ratio, " nnz(M^-1 H)/nnz(H)=", f.inverse_mass_fill);
+  if (f.reduced_fill > 0) append(m, " nnz(W)/nnz(H,M)=", f.reduced_fill);
   m += "): stages [";
   for (std::size_t k = 0; k < stages.size(); ++k) {
     const StageReport& s = stages[k];
@@ -239,6 +255,17 @@ class StagedRun {
   const SolveOutcome& stage(const char* label, const char* entry_name, double max_time, int max_iter,
                             std::string why, bool history = false, const char* line_search = nullptr,
                             int stall_window = 0) {
+    const SolverEntry& entry = run_on(p_, entry_name, max_time, max_iter, history, line_search, stall_window);
+    keep(label, entry.name, std::move(why));
+    return last_;
+  }
+
+  /// One catalogue entry on `problem` (p_, or the FC/I problem that p_
+  /// reduces), from the best iterate, into last_; not kept yet.
+  template <class Problem>
+  const SolverEntry& run_on(const Problem& problem, const char* entry_name, double max_time, int max_iter,
+                            bool history = false, const char* line_search = nullptr, int stall_window = 0,
+                            const Vector& v0 = Vector()) {
     StageRequest& s = stage_request(entry_name, line_search, stall_window);
     SolveRequest& req = s.req;
     req.common.tol = tol();
@@ -256,13 +283,12 @@ class StagedRun {
       };
     }
     req.r0 = best_;
-    req.v0 = best_v_;
+    req.v0 = v0.size() ? v0 : best_v_;
     req.reduced_q_norm = reduced_q_norm_;  // FC/I: factorise M for the error scale once
     // The problem was validated by the registry::solve that called `auto`
     // (or is the reduction of one, validated once by solve_global).
-    last_ = registry::solve_validated(p_, *s.entry, req);
-    keep(label, s.entry->name, std::move(why));
-    return last_;
+    last_ = registry::solve_validated(problem, *s.entry, req);
+    return *s.entry;
   }
 
   /// Folds the last stage's result in: iterations, history, the best
@@ -375,15 +401,31 @@ inline double normal_diagonal_spread(const LocalProblemView& p) {
   return nc > 0 && lo > 0 ? hi / lo : 1.0;
 }
 
+/// The FC/I problem that a Plan's FC/II problem is the reduction of.
+struct ReducedFrom {
+  const GlobalProblemView* problem = nullptr;
+  const GlobalReduction<DefaultBackend>* reduction = nullptr;
+};
+
 /// The staged run on FC/II.
 class Plan : private StagedRun<LocalProblemView> {
  public:
-  Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f) : StagedRun(p, req, f) {
+  /// `from`: the FC/I problem p reduces, if any; the Newton and
+  /// interior-point stages run on it when W is much denser than H and M
+  /// (kNativeLinearAlgebraFill).
+  Plan(const LocalProblemView& p, const SolveRequest& req, const Features& f, const ReducedFrom& from = {})
+      : StagedRun(p, req, f) {
     // The starting point's own error: a stage never returns worse than it.
     // From r = 0 (no warm start) u is q: no product with W.
     best_error_ = req.r0.size() ? local_error_report(p, best_, Vector(p.W * best_ + p.q)).error
                                 : local_error_report(p, best_, p.q).error;
     f_.normal_spread = normal_diagonal_spread(p);
+    if (from.problem) {
+      const double hm = double(from.problem->H.nonZeros() + from.problem->M.nonZeros());
+      f_.reduced_fill = hm > 0 ? double(p.W.nonZeros()) / hm : 0;
+      // With bilateral constraints (G, b) the FC/I entries reduce again.
+      if (f_.reduced_fill >= kNativeLinearAlgebraFill && !from.problem->has_bilateral()) native_ = from;
+    }
   }
 
   SolveOutcome run() {
@@ -462,17 +504,42 @@ class Plan : private StagedRun<LocalProblemView> {
   /// stall"); where it stops short of tol, the line search goes on from
   /// the better of the two iterates.
   void newton(const std::string& why) {
-    stage("newton-full", "nsn-ac", budget(0.5), std::min(kNewtonMaxIter, max_iter_left()),
-          why + "; full steps", false, "none", kFullStepStallWindow);
+    newton_stage("newton-full", budget(0.5), why + "; full steps", "none", kFullStepStallWindow);
     if (done()) return;
     if (last_status_ != Status::TimeLimit) {
       interior_point(std::string("full Newton steps ") + to_string(last_status_));
       if (done()) return;
     }
-    stage("newton", "nsn-ac", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()),
-          std::string("full steps ") + to_string(last_status_) + ": line search",
-          false, "goldstein-price", kNewtonStallWindow);
+    newton_stage("newton", budget(0.6), std::string("full steps ") + to_string(last_status_) + ": line search",
+                 "goldstein-price", kNewtonStallWindow);
   }
+
+  /// Semismooth Newton on Alart-Curnier: on FC/II (`nsn-ac`), or on the
+  /// FC/I problem it reduces when that is the cheaper form (`nsn-ac-global`).
+  void newton_stage(const char* label, double max_time, std::string why, const char* line_search,
+                    int stall_window) {
+    const int max_iter = std::min(kNewtonMaxIter, max_iter_left());
+    if (native_.problem)
+      native_stage(label, "nsn-ac-global", max_time, max_iter, std::move(why), line_search, stall_window);
+    else
+      stage(label, "nsn-ac", max_time, max_iter, std::move(why), false, line_search, stall_window);
+  }
+
+  /// A stage on the FC/I problem (native_), from the best r and the v it
+  /// determines (v = M^-1 (H r + f)); its r is judged on FC/II like every
+  /// stage's, so that the best iterate is chosen by one measure. The FC/I
+  /// velocities are not kept: solve_global recovers v from the final r.
+  void native_stage(const char* label, const char* entry_name, double max_time, int max_iter, std::string why,
+                    const char* line_search = nullptr, int stall_window = 0) {
+    reduced_q_norm_ = native_.reduction->free_velocity_norm();  // the FC/I error scale, known
+    const SolverEntry& entry = run_on(*native_.problem, entry_name, max_time, max_iter, false, line_search,
+                                      stall_window, native_.reduction->velocity(best_));
+    last_.info.error = local_error_report(p_, last_.r, Vector(p_.W * last_.r + p_.q)).error;
+    last_.v = Vector();
+    last_.lambda = Vector();
+    keep(label, entry.name, std::move(why) + "; on FC/I: nnz(W)/nnz(H,M) = " + number(f_.reduced_fill));
+  }
+  ReducedFrom native_;  ///< set when the Newton and IPM stages run on FC/I
 
   /// The nonsmooth interior point (`nipm`; Nguyen & Armand, NIPM,
   /// docs/references.md), from the centre of the cones. Measured, its
@@ -492,8 +559,11 @@ class Plan : private StagedRun<LocalProblemView> {
   void interior_point(const std::string& why) {
     if (!(f_.mu_min > 0) || interior_point_ran_) return;
     interior_point_ran_ = true;
-    stage("ipm", "nipm", budget(0.3), std::min(kInteriorPointIterations, max_iter_left()),
-          why + ": the interior point");
+    const int max_iter = std::min(kInteriorPointIterations, max_iter_left());
+    if (native_.problem)
+      native_stage("ipm", "nipm", budget(0.3), max_iter, why + ": the interior point");
+    else
+      stage("ipm", "nipm", budget(0.3), max_iter, why + ": the interior point");
   }
   bool interior_point_ran_ = false;
 
@@ -507,7 +577,7 @@ class Plan : private StagedRun<LocalProblemView> {
     newton(best_error_ < before ? "sweeps improved the iterate: Newton again"
                                 : "sweeps did not improve: Newton from the best iterate");
     if (done()) return finish();
-    interior_point("Newton stalled twice");
+    interior_point("Newton not done in its shares of the budget");
     if (done()) return finish();
     // Newton stalls twice where W is singular or badly scaled (many contacts
     // per body, mass ratios): each proximal subproblem FC/II(W + alpha I,
@@ -598,7 +668,7 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
   validate(local);  // once: the stages skip it (StagedRun::stage)
   SolveRequest inner = req;
   inner.common.max_time = req.common.max_time - clock.seconds();
-  SolveOutcome out = Plan(local, inner, f).run();
+  SolveOutcome out = Plan(local, inner, f, ReducedFrom{&p, &reduction}).run();
   out.v = reduction.velocity(out.r);
   if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
   out.info.setup_seconds += reduction.seconds();
