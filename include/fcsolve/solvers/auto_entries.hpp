@@ -558,7 +558,7 @@ class Plan : private StagedRun<LocalProblemView> {
     reduced_q_norm_ = native_.reduction->free_velocity_norm();  // the FC/I error scale, known
     const SolverEntry& entry = run_on(*native_.problem, entry_name, max_time, max_iter, false, line_search,
                                       stall_window, native_.reduction->velocity(best_));
-    last_.info.error = local_error_report(p_, last_.r, Vector(p_.W * last_.r + p_.q)).error;
+    last_.info.error = local_error(p_, last_.r);
     // The entry's FC/I error met tol, its r's FC/II error (v recomputed
     // from r) did not: the stage did not converge by the plan's measure.
     if (last_.info.status == Status::Converged && !(last_.info.error <= tol())) last_.info.status = Status::Stalled;
