@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
 #include <random>
 #include <vector>
 #include <string>
@@ -232,29 +234,44 @@ TEST_CASE("sliding equation: the quartic's roots are the zeros of f", "[local]")
   }
 }
 
-TEST_CASE("fast enumerative: Newton ending on an anti-parallel root is restarted from -t",
+TEST_CASE("fast enumerative: a direction run ending on an anti-parallel root is restarted from -t",
           "[local]") {
-  // A corner of a sliding cube (bench_nsgs nsgs-small/cube-4) in mid-solve:
-  // Newton from the warm start's direction settles on a zero of f where
-  // u_T points against t, which is not a solution.
+  // A corner of a sliding cube (bench_nsgs nsgs-small/cube-4) in mid-solve.
+  // f(t) = 0 has a root where u_T points against t, which is not a
+  // solution; a warm start 0.1 rad from it leads the direction iteration
+  // (SlidingEquation::halley) there.
   using E = local::Enumerative<Coulomb3D>;
+  using Vec2 = local::SlidingEquation::Vec2;
   Eigen::Matrix3d W;
   W << 4, -1.5, 1.5, -1.5, 4, 1.5, 1.5, 1.5, 4;
   const Eigen::Vector3d q(-0.053054385457392675, 0.052485170951347616, -0.020454054322373131);
-  const Eigen::Vector3d warm(0.016249893249819278, -0.0031035756332611583, -0.0037594056771482623);
   const double mu = 0.3;
   const local::SlidingEquation f(W, q, mu);
-  local::SlidingEquation::Vec2 t = -warm.tail<2>().normalized();
-  REQUIRE(f.newton(t, 30));
-  const Eigen::Vector3d spurious = local::SlidingEquation::reaction(W, q, mu, t);
-  const Eigen::Vector3d u = W * spurious + q;
-  CHECK(u.tail<2>().dot(t) < 0);
-  CHECK(residual<Coulomb3D>(W, q, mu, spurious) > 1e-3 * q.norm());
-  // from the opposite direction it reaches the solution
+  std::array<Vec2, 5> roots;
+  const int n = f.roots(roots, 30);
+  int spurious = -1;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d r = local::SlidingEquation::reaction(W, q, mu, roots[k]);
+    if (r[0] > 0 && (W * r + q).tail<2>().dot(roots[k]) < 0) spurious = k;
+  }
+  REQUIRE(spurious >= 0);
+  const Vec2 ts = roots[spurious];
+  const double c = std::cos(0.1), sn = std::sin(0.1);
+  const Vec2 t_warm(c * ts[0] - sn * ts[1], sn * ts[0] + c * ts[1]);
+  const double rn = local::SlidingEquation::reaction(W, q, mu, ts)[0];
+  const Eigen::Vector3d warm(rn, -mu * rn * t_warm[0], -mu * rn * t_warm[1]);
+  Vec2 t = t_warm;
+  REQUIRE(f.halley(t, 30));
+  CHECK((t - ts).norm() <= 1e-12);
+  const Eigen::Vector3d wrong = local::SlidingEquation::reaction(W, q, mu, t);
+  CHECK((W * wrong + q).tail<2>().dot(t) < 0);
+  CHECK(residual<Coulomb3D>(W, q, mu, wrong) > 1e-3 * q.norm());
+  // from the opposite direction it reaches the solution, to rounding
   t = -t;
-  REQUIRE(f.newton(t, 30));
+  REQUIRE(f.halley(t, 30));
   CHECK(residual<Coulomb3D>(W, q, mu, local::SlidingEquation::reaction(W, q, mu, t)) <= 1e-15);
-  // the fast solve returns that slide, the reference's only solution
+  // the fast solve from that warm start returns that slide, the reference's
+  // only solution
   E::Settings s, ref;
   ref.newton_first = false;
   const E::Solutions all = E::enumerate(E::prepare(W, mu, ref), q, ref);

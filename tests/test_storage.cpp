@@ -35,8 +35,11 @@ void check_storage(const LocalProblemView& p, const std::string& name) {
   const DenseMatrix Wd = DenseMatrix(SparseMatrix(p.W));
   for (Index a = 0; a < S.num_blocks(); ++a) {
     REQUIRE((S.diagonal_block(a) - Wd.block(a * D, a * D, D, D)).norm() == 0.0);
-    if constexpr (Storage::row_access)
+    if constexpr (Storage::row_access) {
       REQUIRE((S.block_row_product(a, x) - ref.segment(a * D, D)).norm() <= tol);
+      const Vector off = ref.segment(a * D, D) - Wd.block(a * D, a * D, D, D) * x.segment(a * D, D);
+      REQUIRE((S.off_diagonal_row_product(a, x) - off).norm() <= tol);
+    }
   }
   // column updates: y += W^{.a} dx for every a rebuilds W x from zero
   Vector z = Vector::Zero(m);

@@ -43,8 +43,11 @@ struct Coulomb3DTpl {
   static Vec modified_velocity(const Vec& u, Scalar mu) { return u + de_saxce_shift(u, mu); }
 
   /// Membership with an absolute slack `tol` (tol = 0: exact test).
+  /// Squares are compared (b >= 0 checked first): the square root was on
+  /// the critical path of every stick test of the exact local solver.
   static bool contains(const Vec& r, Scalar mu, Scalar tol = 0) {
-    return r[0] >= -tol && tangential_norm(r) <= mu * r[0] + tol;
+    const Scalar bound = mu * r[0] + tol;
+    return r[0] >= -tol && bound >= 0 && r[1] * r[1] + r[2] * r[2] <= bound * bound;
   }
   static bool contains_dual(const Vec& u, Scalar mu, Scalar tol = 0) {
     return u[0] >= -tol && mu * tangential_norm(u) <= u[0] + tol;

@@ -17,9 +17,10 @@
 // Two modes. Reference (newton_first = false): enumerate every solution and
 // return the one closest to the warm start; this validates the other local
 // solvers (several solutions exist for large mu or unsymmetric W). Fast
-// (newton_first = true, the default): take-off, then stick, then Newton on
-// the sliding direction from the warm start's direction; the companion
-// matrix (a 4 x 4 eigenvalue problem) only when that Newton fails.
+// (newton_first = true, the default): take-off, then stick, then Halley's
+// method on the sliding direction from the warm start's direction
+// (SlidingEquation::halley); the companion matrix (a 4 x 4 eigenvalue
+// problem) only when that iteration fails.
 #pragma once
 
 #include <fcsolve/local/one_contact.hpp>
@@ -40,7 +41,7 @@ struct Enumerative {
   struct Settings {
     bool newton_first = true;  ///< fast mode (see the header comment)
     double tol = 1e-9;         ///< solution iff ||F_nat|| <= tol * scale
-    int newton_iter = 30;      ///< Newton steps on the sliding direction
+    int newton_iter = 30;      ///< (Halley) steps on the sliding direction
   };
   struct Data {
     Mat W, W_inv;
@@ -131,7 +132,7 @@ struct Enumerative {
     return r;
   }
 
-  /// Take-off, stick, then Newton on the sliding direction; true if r now
+  /// Take-off, stick, then Halley on the sliding direction; true if r now
   /// holds a verified solution.
   static bool fast_solve(const Data& d, const Vec& q, Vec& r, const Settings& s,
                          LocalResult& res) {
@@ -150,23 +151,24 @@ struct Enumerative {
       }
       if constexpr (dim == 1) return false;
       if constexpr (dim == 3) {
-        if (d.mu > 0 && slide_newton(d, q, stick, s, r, res)) return true;
+        if (d.mu > 0 && slide_by_direction(d, q, stick, s, r, res)) return true;
       }
     }
     res.converged = false;
     return false;
   }
 
-  /// 3D sliding by Newton on the direction, started from the warm start's
-  /// sliding direction -r_T / ||r_T|| (or, failing that, from the stick
-  /// candidate's). Accepts only a verified solution. f(t) = 0 also holds
-  /// where u_T is anti-parallel to t (u_T . t < 0, not a solution); when
-  /// Newton settles on such a root, or does not settle, it is started once
-  /// more from the opposite direction -t: a Newton run costs a few hundred
-  /// instructions, the quartic fallback tens of thousands (callgrind,
-  /// bench_nsgs nsgs-small/cube-4: one fallback a solve was a quarter of it).
+  /// 3D sliding by Halley's method on the direction, started from the warm
+  /// start's sliding direction -r_T / ||r_T|| (or, failing that, from the
+  /// stick candidate's). Accepts only a verified solution. f(t) = 0 also
+  /// holds where u_T is anti-parallel to t (u_T . t < 0, not a solution);
+  /// when the iteration settles on such a root, or does not settle, it is
+  /// started once more from the opposite direction -t: a run costs a few
+  /// hundred instructions, the quartic fallback tens of thousands
+  /// (callgrind, bench_nsgs nsgs-small/cube-4: one fallback a solve was a
+  /// quarter of it).
   template <int D = dim, std::enable_if_t<D == 3, int> = 0>
-  static bool slide_newton(const Data& d, const Vec& q, const Vec& stick, const Settings& s,
+  static bool slide_by_direction(const Data& d, const Vec& q, const Vec& stick, const Settings& s,
                            Vec& r, LocalResult& res) {
     using Vec2 = SlidingEquation::Vec2;
     Vec2 t(-r[1], -r[2]);
@@ -176,19 +178,19 @@ struct Enumerative {
     t = norm > 0 ? Vec2(t / norm) : Vec2(1, 0);
     const SlidingEquation f(d.W, q, d.mu);
     if (!slide_from(f, d, q, s, t, r)) {
-      t = -t;  // t: where the first Newton run ended
+      t = -t;  // t: where the first run ended
       if (!slide_from(f, d, q, s, t, r)) return false;
     }
     res.kind = ContactCase::Slide;
     return true;
   }
 
-  /// Newton on the sliding direction from t (left where Newton ended); true
+  /// Halley on the sliding direction from t (left where it ended); true
   /// (and r set) if it ends on a verified solution.
   template <int D = dim, std::enable_if_t<D == 3, int> = 0>
   static bool slide_from(const SlidingEquation& f, const Data& d, const Vec& q, const Settings& s,
                          SlidingEquation::Vec2& t, Vec& r) {
-    if (!f.newton(t, s.newton_iter)) return false;
+    if (!f.halley(t, s.newton_iter)) return false;
     const Vec candidate = SlidingEquation::reaction(d.W, q, d.mu, t);
     if (!is_sliding_solution(d, q, candidate, t, s)) return false;
     r = candidate;

@@ -306,14 +306,13 @@ class Nsgs {
     }
     auto ra = r.template segment<d>(a * d);
     const Vec r_old = ra;
-    const Mat& Waa = W.diagonal_block(a);
-    Vec qhat;
+    Vec qhat;  // q^a + sum_{b != a} W^{ab} r^b
     if constexpr (Storage::row_access) {
-      qhat = q.template segment<d>(a * d) + W.block_row_product(a, r);
+      qhat = q.template segment<d>(a * d) + W.off_diagonal_row_product(a, r);
     } else {
       qhat = u_.template segment<d>(a * d);
+      qhat.noalias() -= W.diagonal_block(a) * r_old;
     }
-    qhat.noalias() -= Waa * r_old;
     Vec r_new = r_old;
     const local::LocalResult lr = LocalSolver::solve(data[a], qhat, r_new, s.local);
     if (!lr.converged) ++out.failures;
@@ -637,11 +636,16 @@ class Nsgs {
     return error;
   }
 
-  /// FCLIB error of x, with work_ = W x + q.
+  /// FCLIB error of x, with work_ = W x + q. A cold start (x = 0) skips the
+  /// product: on 3 contacts it was a fifth of the solve's error evaluations.
   double error_of(const Eigen::Ref<const Vector>& x) {
     const LocalProblemView& p = *problem_;
-    storage_.multiply(x, work_);
-    work_ += p.q;
+    if ((x.array() == 0).all()) {
+      work_ = p.q;
+    } else {
+      storage_.multiply(x, work_);
+      work_ += p.q;
+    }
     return std::sqrt(natural_map_norms<Cone>(x, work_, p.mu).squared_sum) / scale_;
   }
 

@@ -65,6 +65,14 @@ class BlockSparseStorage {
       acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
     return acc;
   }
+  /// (W x)^a - W^{aa} x^a over the stored blocks of row a (a Gauss-Seidel
+  /// visit's right-hand side).
+  BlockVector off_diagonal_row_product(Index a, const Eigen::Ref<const VectorType>& x) const {
+    BlockVector acc = BlockVector::Zero();
+    for (Index p = row_start_[a]; p < row_start_[a + 1]; ++p)
+      if (column_[p] != a) acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
+    return acc;
+  }
   void multiply(const Eigen::Ref<const VectorType>& x, Eigen::Ref<VectorType> y) const {
     for (Index a = 0; a < num_blocks(); ++a) y.template segment<D>(a * D) = block_row_product(a, x);
   }

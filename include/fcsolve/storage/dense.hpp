@@ -1,5 +1,8 @@
 // Dense storage of W for small scenes: a few contacts pay for no index
-// arrays at all. Row-major, so a block row W^{a.} is d contiguous rows.
+// arrays at all. Column-major: a fixed d x d block times a d-vector is then
+// d column updates of packets, where a row-major block's row dot products
+// ended in horizontal adds (callgrind, bench_nsgs nsgs-small/cube-3: 2% fewer
+// instructions a solve, 6% less time).
 #pragma once
 
 #include <fcsolve/storage/storage_types.hpp>
@@ -49,18 +52,27 @@ class DenseStorage {
       y.noalias() += W_.template block<D, D>(a * D, b * D) * x.template segment<D>(b * D);
     return y;
   }
+  /// (W x)^a - W^{aa} x^a: what a Gauss-Seidel visit of contact a needs,
+  /// without multiplying the diagonal block in and out again (two of the
+  /// visit's four 3 x 3 products on 3 contacts).
+  BlockVector off_diagonal_row_product(Index a, const Eigen::Ref<const VectorType>& x) const {
+    BlockVector y = BlockVector::Zero();
+    for (Index b = 0; b < num_blocks(); ++b)
+      if (b != a) y.noalias() += W_.template block<D, D>(a * D, b * D) * x.template segment<D>(b * D);
+    return y;
+  }
   /// y += W^{.a} dx (column block a times dx)
   void add_block_column(Index a, const BlockVector& dx, Eigen::Ref<VectorType> y) const {
     y.noalias() += W_.template middleCols<D>(a * D) * dx;
   }
 
-  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& matrix() const {
+  const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& matrix() const {
     return W_;
   }
 
  private:
   static constexpr Index kBlockwiseMaxBlocks = 16;  // the dispatch's dense limit (storage.hpp)
-  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> W_;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> W_;
   std::vector<Block, Eigen::aligned_allocator<Block>> diagonal_;
 };
 
