@@ -68,8 +68,11 @@ PAIRS = {
     # step), Tresca's, Panagiotopoulos'
     "fixed-point": [("fp-ds", [], "dsfp"), ("fp-ds", ["--step", "self-adaptive"], "dsfp"),
                     ("tresca", [], "tresca"), ("pana", [], "pfp")],
-    # VI projection family: fixed point and extragradient, self-adaptive step
-    "vi": [("vi-fp", [], "vi-fp"), ("vi-eg", [], "vi-eg")],
+    # VI projection family: fixed point and extragradient, self-adaptive step;
+    # vi-eg's default second step is VI_EG's (from the trial point), the
+    # textbook one (Korpelevich's, from r) is shown too
+    "vi": [("vi-fp", [], "vi-fp"), ("vi-eg", [], "vi-eg"),
+           ("vi-eg", ["--second-step", "korpelevich"], "vi-eg")],
     # ADMM with De Saxce's shift against Siconos' ADMM
     "admm": [("admm", [], "admm")],
     # ADMM on FC/I in (v, r) (global files only) against Siconos' gfc3d ADMM

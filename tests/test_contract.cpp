@@ -247,6 +247,7 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
                                           ContactOrdering::ShuffledEachSweep,
                                           ContactOrdering::Coloured});
   round_trip(std::vector<StepRule>{StepRule::SelfAdaptive, StepRule::Fixed});
+  round_trip(std::vector<EgSecondStep>{EgSecondStep::Predictor, EgSecondStep::Korpelevich});
   // the catalogue offers exactly the enum's names, its default among them
   const registry::SolverEntry& e = fcsolve_test::catalogue_find("nsn-ac");
   registry::SolveRequest req = registry::make_request(e);

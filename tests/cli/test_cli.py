@@ -238,6 +238,12 @@ def test_solver_settings_are_typed():
     assert bad.returncode == 2 and "ratio_max" in bad.stderr
     unknown = run("solve", problem, "--solver", "vi-eg", "--omega", "1")
     assert unknown.returncode == 2 and "omega" in unknown.stderr
+    # an enumerated setting: its names, and only on the entry that has it
+    assert run("solve", problem, "--solver", "vi-eg", "--second-step", "korpelevich").returncode == 0
+    bad_name = run("solve", problem, "--solver", "vi-eg", "--second-step", "backwards")
+    assert bad_name.returncode == 2 and "second_step" in bad_name.stderr
+    not_here = run("solve", problem, "--solver", "vi-fp", "--second-step", "predictor")
+    assert not_here.returncode == 2 and "second-step" in not_here.stderr
 
 
 def test_global_solve_recovers_v(tmp_path):

@@ -27,6 +27,8 @@ SolveOutcome solve_projected(const LocalProblemView& p, const SolveRequest& req,
   s.rho = req.settings.real("rho");
   s.ratio_max = req.settings.real("ratio_max");
   s.ratio_min = req.settings.real("ratio_min");
+  if (variant == ProjectionVariant::ExtraGradient)
+    s.second_step = req.settings.enumerated<EgSecondStep>("second_step");
   Solver solver(s);
   return compute_and_solve(solver, p, req);
 }
@@ -60,6 +62,11 @@ inline SolverEntry projected_entry(std::string name, std::string summary,
                                    StepRule step_rule = ProjectedFixedPointSettings().step) {
   SolverEntry e(std::move(name), std::move(family), std::move(summary));
   e.settings = projected_settings(step_rule);
+  if (variant == ProjectionVariant::ExtraGradient)
+    e.settings.push_back(enum_setting(
+        "second_step", ProjectedFixedPointSettings().second_step,
+        "second step: predictor, from the trial point (as Siconos' VI_EG), or korpelevich, "
+        "from r"));
   e.default_max_iter = 20000;
   e.solve_local = projected_solver(variant);
   return e;
@@ -72,7 +79,7 @@ inline void add_vi_solvers(std::vector<SolverEntry>& v) {
       "vi-fp", "projected fixed point on the VI, self-adaptive step (FP-VI-UPK)",
       ProjectionVariant::FixedPoint));
   v.push_back(detail::projected_entry(
-      "vi-eg", "extragradient on the VI, self-adaptive step (EG-VI-UPK)",
+      "vi-eg", "extragradient on the VI, self-adaptive step (EG-VI-UPK; second step from the trial point by default)",
       ProjectionVariant::ExtraGradient));
 }
 
