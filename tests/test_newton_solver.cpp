@@ -279,6 +279,52 @@ TEST_CASE("Newton: storages, linear solvers, line searches and rho strategies", 
   }
 }
 
+#ifdef FCSOLVE_WITH_LAPACK
+TEST_CASE("Newton: a half-full J is factorised dense (LAPACK), as the sparse LU would", "[newton][policies]") {
+  SECTION("the linear solver on full and singular matrices held sparse") {
+    const int n = 40;
+    DenseMatrix A = DenseMatrix::Random(n, n);
+    A.diagonal().array() += 3.0;
+    const Vector b = Vector::LinSpaced(n, -1.0, 2.0);
+    SparseNewtonLinearSolver<SuiteSparseBackend> dense, sparse;
+    const SparseMatrix J = A.sparseView();
+    REQUIRE(dense.factorize(J));
+    Vector x(n);
+    dense.solve(b, x);
+    CHECK((A * x - b).norm() <= 1e-12 * b.norm() * A.norm());
+    // a tridiagonal matrix stays with UMFPACK and gives the same x
+    DenseMatrix T = DenseMatrix::Zero(n, n);
+    T.diagonal() = A.diagonal();
+    T.diagonal(1) = A.diagonal(1);
+    T.diagonal(-1) = A.diagonal(-1);
+    Vector y(n), z(n);
+    const SparseMatrix Jt = T.sparseView();  // UMFPACK reads J until solve(): kept alive
+    REQUIRE(sparse.factorize(Jt));
+    sparse.solve(b, y);
+    REQUIRE(dense.factorize(Jt));  // still the dense path: decided at analysis
+    dense.solve(b, z);
+    CHECK((y - z).norm() <= 1e-10 * y.norm());
+    // a zero column: singular, reported as a failed factorisation
+    DenseMatrix S = A;
+    S.col(7).setZero();
+    dense.reset();
+    CHECK_FALSE(dense.factorize(SparseMatrix(S.sparseView())));
+  }
+  SECTION("Newton on a full W held sparse: same steps as Eigen's sparse LU") {
+    const LocalProblem p = fclib::read_local(fcsolve_test::bundled("Rover1039.hdf5"));
+    SolverInfo lapack_info, eigen_info;
+    const Vector r1 = solve_local<AlartCurnierFunction, Coulomb3D, SparseStorage<3>,
+                                  SparseNewtonLinearSolver<SuiteSparseBackend>>(p, {}, &lapack_info);
+    const Vector r2 = solve_local<AlartCurnierFunction, Coulomb3D, SparseStorage<3>,
+                                  SparseNewtonLinearSolver<EigenBackend>>(p, {}, &eigen_info);
+    CHECK(lapack_info.converged());
+    CHECK(local_error(p, r1) <= 1e-8);
+    CHECK(lapack_info.iterations == eigen_info.iterations);
+    CHECK((r1 - r2).norm() <= 1e-8 * (1 + r2.norm()));
+  }
+}
+#endif
+
 TEST_CASE("Newton: warm start, callback, history and bad input", "[newton][api]") {
   const LocalProblem p = fclib::read_local(fcsolve_test::bundled("Confeti-ex03-Fc3D-SBM.hdf5"));
   Newton<AlartCurnierFunction, Coulomb3D> nsn;

@@ -11,11 +11,20 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 
+#ifdef FCSOLVE_WITH_LAPACK
+#include <fcsolve/linalg/lapack_dense_lu.hpp>
+#endif
+
 namespace fcsolve {
 
 struct SuiteSparseBackend {
   using SymmetricSolver = Eigen::CholmodDecomposition<SparseMatrix>;
   using GeneralSolver = Eigen::UmfPackLU<SparseMatrix>;
+#ifdef FCSOLVE_WITH_LAPACK
+  /// For unsymmetric matrices held sparse but at least half full
+  /// (newton/linear_solvers.hpp).
+  using DenseLU = LapackDenseLU;
+#endif
   static constexpr const char* name = "suitesparse";
 };
 

@@ -4,7 +4,9 @@
 // the numerical factorisation at each iteration.
 //   SparseNewtonLinearSolver<Backend>  Backend::GeneralSolver: UMFPACK
 //                                      (SuiteSparseBackend) or Eigen::SparseLU
-//                                      (EigenBackend, no dependency)
+//                                      (EigenBackend, no dependency); a J at
+//                                      least half full goes to the backend's
+//                                      DenseLU where it has one (LAPACK)
 //   DenseNewtonLinearSolver            full-pivoting dense LU, for the few
 //                                      contacts of a DenseStorage scene
 // A policy has: using Matrix; bool factorize(const Matrix&) (false: singular
@@ -23,6 +25,21 @@
 
 namespace fcsolve {
 
+/// Whether a backend has a dense LU for sparse-held full matrices.
+template <class B, class = void>
+struct has_dense_lu : std::false_type {
+  struct type {};  // no dense LU: an empty stand-in
+};
+template <class B>
+struct has_dense_lu<B, std::void_t<typename B::DenseLU>> : std::true_type {
+  using type = typename B::DenseLU;
+};
+
+/// Fill (stored entries / n^2) from which J is factorised dense: a sparse
+/// LU of a matrix at least half full fills in completely, so it does the
+/// dense flops plus its own bookkeeping.
+inline constexpr double kDenseLuMinFill = 0.5;
+
 template <class Backend>
 class SparseNewtonLinearSolver {
  public:
@@ -31,18 +48,28 @@ class SparseNewtonLinearSolver {
 
   bool factorize(const SparseMatrix& J) {
     if (!analysed_) {
-      lu_.analyzePattern(J);  // (Eigen's SparseLU sets no info() here: only factorize() reports)
+      dense_ = has_dense_lu<Backend>::value &&
+               double(J.nonZeros()) >= kDenseLuMinFill * double(J.rows()) * double(J.cols());
+      // (Eigen's SparseLU sets no info() in analyzePattern: only factorize() reports)
+      if (!dense_) lu_.analyzePattern(J);
       analysed_ = true;
     }
+    if constexpr (has_dense_lu<Backend>::value)
+      if (dense_) return dense_lu_.factorize(J);
     lu_.factorize(J);
     return lu_.info() == Eigen::Success;
   }
-  void solve(const Vector& b, Vector& x) { x = lu_.solve(b); }
+  void solve(const Vector& b, Vector& x) {
+    if constexpr (has_dense_lu<Backend>::value)
+      if (dense_) return dense_lu_.solve(b, x);
+    x = lu_.solve(b);
+  }
   void reset() { analysed_ = false; }
 
  private:
   typename Backend::GeneralSolver lu_;
-  bool analysed_ = false;
+  typename has_dense_lu<Backend>::type dense_lu_;
+  bool analysed_ = false, dense_ = false;
 };
 
 class DenseNewtonLinearSolver {

@@ -9,7 +9,8 @@
 // err_k the FCLIB error of r_k, unit the form's mean diagonal of W (or its
 // estimate) and f_k a factor multiplied by 10 after a failed inner solve and
 // divided by 10 after one that succeeds in a few iterations (the rules of
-// Siconos' PROX, ibid.); the inner tolerance is max(err_k / 10, tol / nc) in
+// Siconos' PROX, ibid.), but only when that fast success also lowered the
+// outer error; the inner tolerance is max(err_k / 10, tol / nc) in
 // the outer problem's units; an inner Newton that stalls (settings'
 // inner_stall_window) fails early. A failed inner solve is still taken when it
 // lowered the error; otherwise r_k is kept and retried with the larger alpha
@@ -121,6 +122,7 @@ class ProximalPointLoop {
       const SolverInfo& in = self.solve_subproblem();
       inner_iterations_ += in.iterations;
 
+      const double error_before = error;
       FCSOLVE_NO_MALLOC_BEGIN();
       const double trial_error = self.trial_error();
       const bool solved = in.converged();
@@ -139,7 +141,12 @@ class ProximalPointLoop {
       if (!solved) {
         ++inner_failures_;
         factor *= 10;
-      } else if (in.iterations <= s.fast_inner_iterations) {
+      } else if (in.iterations <= s.fast_inner_iterations && error < error_before) {
+        // Coulomb friction is not monotone: a subproblem solved fast can still
+        // raise the outer error. Lowering alpha then made the loop cycle
+        // between a small alpha (fast, error up) and a larger one (inner
+        // Newton stalls, error down): a generated sphere pile of 1000 contacts
+        // sat at 3e-5 for 20 s. Alpha is lowered only on progress.
         factor /= 10;
       }
 

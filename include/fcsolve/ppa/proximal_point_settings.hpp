@@ -23,8 +23,9 @@ struct ProximalPointSettings : SolverSettings {
   /// positive floor keeps W + alpha I regular on rank-deficient W.
   double alpha_min = 1e-8;
   double alpha_max = 1e6;
-  /// An inner solve that succeeds in at most this many iterations divides
-  /// the factor on alpha by 10 (a failed one multiplies it by 10).
+  /// An inner solve that succeeds in at most this many iterations and
+  /// lowers the outer error divides the factor on alpha by 10 (a failed one
+  /// multiplies it by 10).
   int fast_inner_iterations = 3;
   int inner_max_iter = 100;  ///< iteration cap of each inner solve
   /// An inner Newton solve whose best error does not halve within this many

@@ -34,7 +34,7 @@ inline std::vector<SettingSpec> settings_specs() {
       real_setting("alpha_min", d.alpha_min, "lower bound on alpha (units of mean |W_ii|)", 1e-300),
       real_setting("alpha_max", d.alpha_max, "upper bound on alpha (units of mean |W_ii|)", 1e-300),
       integer_setting("fast_inner_iterations", d.fast_inner_iterations,
-                      "an inner solve this short divides alpha's factor by 10", 0, 1e9),
+                      "an inner solve this short that lowers the error divides alpha's factor by 10", 0, 1e9),
       integer_setting("inner_max_iter", d.inner_max_iter, "iteration cap of each inner solve", 1,
                       1e9),
       integer_setting("inner_stall_window", d.inner_stall_window,
