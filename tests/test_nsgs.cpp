@@ -356,6 +356,36 @@ TEST_CASE("nsgs fails cleanly when a contact has no solution", "[nsgs]") {
   CHECK(nsgs.info().error == Approx(local_error(p, r)).epsilon(1e-10));
 }
 
+TEST_CASE("catalogue: nsgs reads a request's settings again whenever they change", "[nsgs][registry]") {
+  // The entry keeps what it read from the last settings map it saw (a hot
+  // loop, auto's stages); a change made in place after a solve must still
+  // be seen.
+  const LocalProblem p = fclib::read_local(fcsolve_test::bundled("Rover1039.hdf5"));
+  registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find("nsgs"));
+  req.common.max_time = 20;
+  const auto sweeps = [&] {
+    const registry::SolveOutcome out = fcsolve_test::solve_named(LocalProblemView(p), "nsgs", req);
+    CHECK(out.info.converged());
+    CHECK(local_error(p, out.r) <= req.common.tol);
+    return out.info.iterations;
+  };
+  const int plain = sweeps();
+  CHECK(sweeps() == plain);
+  req.settings.set("omega", 0.5);  // a map of req's own from here on
+  const int damped = sweeps();
+  CHECK(damped > plain);
+  req.settings.set("omega", 0.7);  // the same object, changed after a solve read it
+  const int less_damped = sweeps();
+  CHECK(less_damped != damped);
+  CHECK(less_damped > plain);
+  req.settings.set("omega", 1.0);
+  CHECK(sweeps() == plain);
+  // another map with the defaults' values: read again, the same run
+  registry::SolveRequest fresh = registry::make_request(fcsolve_test::catalogue_find("nsgs"));
+  fresh.common = req.common;
+  CHECK(fcsolve_test::solve_named(LocalProblemView(p), "nsgs", fresh).info.iterations == plain);
+}
+
 TEST_CASE("catalogue: the nsgs family solves local and global problems", "[nsgs][registry]") {
   std::set<std::string> names;
   for (const auto& e : fcsolve_test::catalogue_entries())

@@ -77,13 +77,14 @@ struct SlidingEquation {
   /// Stops after a step |dth| <= `tol`, or when the error left after the
   /// step, K |dth|^3 with Halley's constant K = f''^2 / (4 f'^2) -
   /// f''' / (6 f') (plus 1/12 for the rotation) bounded through the
-  /// coefficients, is at rounding level (<= 1e-8 tol). Returns false if the
-  /// denominator vanishes or the iteration does not settle.
-  bool halley(Vec2& t, int max_iter, double tol = 1e-9) const {
+  /// coefficients, is at most `settled` (radians; default: rounding level).
+  /// Returns false if the denominator vanishes or the iteration does not
+  /// settle.
+  bool halley(Vec2& t, int max_iter, double tol = 1e-9, double settled = 1e-17) const {
     // |f''| <= m2 and |f'''| <= m3 at every unit t
     const double m2 = std::abs(a1) + std::abs(a2) + 2 * (std::abs(C - A) + std::abs(B));
     const double m3 = std::abs(a1) + std::abs(a2) + 4 * (std::abs(C - A) + std::abs(B));
-    const double rounding = 1e-8 * tol;
+    const double rounding = settled;
     for (int it = 0; it < max_iter; ++it) {
       const double c = t[0], s = t[1], cc = c * c, ss = s * s, cs = c * s;
       const double f = a1 * s - a2 * c + A * cc + B * cs + C * ss;

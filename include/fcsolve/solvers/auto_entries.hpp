@@ -79,6 +79,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -87,7 +88,7 @@ namespace registry {
 
 // Defined in solvers/catalog.hpp, which registers this entry among the
 // others; the plan looks its stages up by name when it runs.
-const SolverEntry& find(const std::string& name);
+const SolverEntry& find(std::string_view name);
 const SettingValues& default_settings(const SolverEntry& e);
 
 namespace auto_detail {

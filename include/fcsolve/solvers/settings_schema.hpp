@@ -154,6 +154,9 @@ class SettingValues {
     return values_ ? *values_ : none;
   }
   bool declares(std::string_view name) const { return values().count(name) > 0; }
+  /// The map itself, shared: while a holder keeps it, it cannot change (a
+  /// shared map is copied before any write), so it identifies these values.
+  std::shared_ptr<const Map> shared_values() const { return values_; }
 
  private:
   /// The map, this object's own before it changes (copy on write).
