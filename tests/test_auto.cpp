@@ -157,6 +157,25 @@ TEST_CASE("auto: strongly coupled contacts, closed form, Newton takes over", "[a
   }
 }
 
+#ifdef FCSOLVE_WITH_KLU
+TEST_CASE("auto: the sweeps' allowance follows what a Newton step costs on W's pattern", "[auto]") {
+  using namespace registry::auto_detail;
+  // 12 contacts coupled in pairs: J's LU fills nothing, a step costs its fixed part
+  const CoupledPairs pairs(6, 0.5);
+  const double sparse_step = newton_step_in_sweeps(pairs.problem);
+  CHECK(sparse_step >= kNewtonStepFixedSweeps);
+  CHECK(sparse_step <= kNewtonStepFixedSweeps + 5);
+  // the same size, every two contacts coupled: the LU does about 2/3 m^3
+  // flops on m^2 entries of W
+  DenseMatrix W = DenseMatrix::Constant(36, 36, 0.01);
+  W.diagonal().setConstant(1.0);
+  const LocalProblem dense = local_problem(W, Vector::Constant(36, -1.0), 0.5);
+  const double dense_step = newton_step_in_sweeps(dense);
+  CHECK(dense_step >= sparse_step + 10);
+  CHECK(dense_step <= kNewtonStepFixedSweeps + 36);
+}
+#endif
+
 TEST_CASE("auto: a bundled FCLIB problem of each kind", "[auto][fclib]") {
   for (const char* name : {"OneObject-i1028-138.hdf5", "Capsules-i101-404.hdf5",
                            "Box_Stacks-i0035-31-0.hdf5"}) {

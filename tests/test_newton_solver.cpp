@@ -18,6 +18,8 @@
 #include <filesystem>
 #include <optional>
 #include <set>
+#include <string>
+#include <vector>
 
 using namespace fcsolve;
 
@@ -321,6 +323,134 @@ TEST_CASE("Newton: a half-full J is factorised dense (LAPACK), as the sparse LU 
     CHECK(local_error(p, r1) <= 1e-8);
     CHECK(lapack_info.iterations == eigen_info.iterations);
     CHECK((r1 - r2).norm() <= 1e-8 * (1 + r2.norm()));
+  }
+}
+#endif
+
+#ifdef FCSOLVE_WITH_KLU
+namespace {
+/// An elastic body's stiffness pattern: a g^3 grid of nodes, 3 dofs each,
+/// every node coupled to its 26 neighbours (diagonally dominant values).
+SparseMatrix grid_stiffness(int g) {
+  const int dofs = 3;
+  std::vector<Eigen::Triplet<double>> t;
+  const auto node = [g](int i, int j, int k) { return (i * g + j) * g + k; };
+  for (int i = 0; i < g; ++i)
+    for (int j = 0; j < g; ++j)
+      for (int k = 0; k < g; ++k)
+        for (int di = -1; di <= 1; ++di)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int dk = -1; dk <= 1; ++dk) {
+              const int a = i + di, b = j + dj, c = k + dk;
+              if (a < 0 || b < 0 || c < 0 || a >= g || b >= g || c >= g) continue;
+              const bool self = !di && !dj && !dk;
+              for (int p = 0; p < dofs; ++p)
+                for (int q = 0; q < dofs; ++q)
+                  t.emplace_back(node(i, j, k) * dofs + p, node(a, b, c) * dofs + q,
+                                 self ? (p == q ? 30.0 : 1.0) : -0.1 * (1 + p));
+            }
+  const int n = g * g * g * dofs;
+  SparseMatrix J(n, n);
+  J.setFromTriplets(t.begin(), t.end());
+  J.makeCompressed();
+  return J;
+}
+}  // namespace
+
+TEST_CASE("Newton: KLU refactorises J with its first pivot order and checks every solve", "[newton][policies]") {
+  SECTION("the pattern decides the factorisation") {
+    const int n = 40;
+    DenseMatrix T = DenseMatrix::Zero(n, n);
+    T.diagonal().setConstant(4.0);
+    T.diagonal(1).setConstant(-1.0);
+    T.diagonal(-1).setConstant(-1.5);
+    const SparseMatrix tridiagonal = T.sparseView();
+    SparseNewtonLinearSolver<SuiteSparseBackend> s;
+    REQUIRE(s.factorize(tridiagonal));
+    CHECK(std::string(s.path()) == "pattern");  // no fill: a left-looking LU
+    const Vector b = Vector::LinSpaced(n, -1.0, 2.0);
+    Vector x(n);
+    s.solve(b, x);
+    CHECK((T * x - b).norm() <= 1e-13 * b.norm());
+    // an elastic body's stiffness fills in dense fronts: UMFPACK
+    const SparseMatrix K = grid_stiffness(8);
+    s.reset();
+    REQUIRE(s.factorize(K));
+    CHECK(std::string(s.path()) == "general");
+    const Vector c = Vector::LinSpaced(K.rows(), 1.0, -3.0);
+    Vector y(K.rows());
+    s.solve(c, y);
+    CHECK((K * y - c).norm() <= 1e-12 * c.norm());
+#ifdef FCSOLVE_WITH_LAPACK
+    DenseMatrix A = DenseMatrix::Random(n, n);
+    A.diagonal().array() += 3.0;
+    s.reset();
+    REQUIRE(s.factorize(SparseMatrix(A.sparseView())));
+    CHECK(std::string(s.path()) == "dense");
+#endif
+  }
+  SECTION("a pivot order gone bad is caught by the solve's backward error") {
+    // First [[1, .5], [.5, 1]]: KLU keeps the diagonal pivots. Then the
+    // same pattern with a tiny first diagonal: reusing that order divides
+    // by 1e-18 (growth 1e18), so the solve must factorise afresh.
+    const auto matrix = [](double a) {
+      DenseMatrix A(2, 2);
+      A << a, 1.0, 1.0, 1.0;
+      return A;
+    };
+    DenseMatrix A = matrix(1.0);
+    A(0, 1) = A(1, 0) = 0.5;
+    KluPatternLU lu;
+    const SparseMatrix J1 = A.sparseView();
+    REQUIRE(lu.factorize(J1));
+    const Vector b = (Vector(2) << 1.0, 2.0).finished();
+    Vector x(2);
+    lu.solve(b, x);
+    CHECK((A * x - b).norm() <= 1e-15 * b.norm());
+    CHECK(lu.fresh_factorisations() == 1);
+    const DenseMatrix B = matrix(1e-18);
+    const SparseMatrix J2 = B.sparseView(1.0, 0.0);  // keep the tiny entry: same pattern
+    REQUIRE(J2.nonZeros() == 4);
+    REQUIRE(lu.factorize(J2));
+    lu.solve(b, x);
+    CHECK((B * x - b).norm() <= 1e-14 * b.norm());
+    CHECK(lu.fresh_factorisations() == 2);
+    // a well-conditioned matrix of the pattern is refactorised, not factorised
+    const DenseMatrix C = matrix(3.0);
+    const SparseMatrix J3 = C.sparseView();
+    REQUIRE(lu.factorize(J3));
+    lu.solve(b, x);
+    CHECK((C * x - b).norm() <= 1e-14 * b.norm());
+    CHECK(lu.fresh_factorisations() == 2);
+  }
+  SECTION("a singular J is reported, and the next one factorised afresh") {
+    DenseMatrix A = DenseMatrix::Zero(3, 3);
+    A << 2, 1, 0, 1, 2, 1, 0, 1, 2;
+    const SparseMatrix J1 = A.sparseView();
+    KluPatternLU lu;
+    REQUIRE(lu.factorize(J1));
+    DenseMatrix S = A;
+    S.row(1) = S.row(0) + S.row(2);  // same pattern, rank 2
+    SparseMatrix J2 = A.sparseView();
+    for (Index j = 0; j < J2.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(J2, j); it; ++it) it.valueRef() = S(it.row(), j);
+    CHECK_FALSE(lu.factorize(J2));
+    REQUIRE(lu.factorize(J1));
+    const Vector b = Vector::Ones(3);
+    Vector x(3);
+    lu.solve(b, x);
+    CHECK((A * x - b).norm() <= 1e-14);
+  }
+  SECTION("Newton takes the same steps with KLU as with Eigen's sparse LU") {
+    const LocalProblem p = fclib::read_local(fcsolve_test::bundled("BoxesStack1-i100000-32.hdf5"));
+    SolverInfo klu_info, eigen_info;
+    const Vector r1 = solve_local<AlartCurnierFunction, Coulomb3D, SparseStorage<3>,
+                                  SparseNewtonLinearSolver<SuiteSparseBackend>>(p, {}, &klu_info);
+    const Vector r2 = solve_local<AlartCurnierFunction, Coulomb3D, SparseStorage<3>,
+                                  SparseNewtonLinearSolver<EigenBackend>>(p, {}, &eigen_info);
+    CHECK(klu_info.converged());
+    CHECK(local_error(p, r1) <= 1e-8);
+    CHECK(klu_info.iterations == eigen_info.iterations);
   }
 }
 #endif

@@ -8,7 +8,10 @@
 //
 //   SparseKktFactorization<Backend>: CHOLMOD's simplicial LDL^T and UMFPACK
 //     with SuiteSparseBackend, Eigen's SimplicialLDLT and SparseLU with
-//     EigenBackend (KktSolvers below).
+//     EigenBackend (KktSolvers below); an unsymmetric K whose factors fill
+//     little goes to the backend's PatternLU where it has one (KLU,
+//     refactorised with one pivot order: linalg/klu_pattern_lu.hpp; nipm
+//     on generated rigid stacks 1.5 to 2.5x faster than with UMFPACK).
 //   DenseKktFactorization: Eigen::LDLT / PartialPivLU for small scenes, which
 //     must not pay for sparse machinery.
 //
@@ -17,6 +20,7 @@
 #pragma once
 
 #include <fcsolve/core/types.hpp>
+#include <fcsolve/linalg/backend_traits.hpp>
 #include <fcsolve/linalg/eigen_backend.hpp>
 
 #include <Eigen/Cholesky>
@@ -86,6 +90,7 @@ class SparseKktFactorization {
     K_.makeCompressed();
     symmetric_ = symmetric;
     analysed_ = false;
+    pattern_ = false;
     sym_.reset();
     gen_.reset();
     pb_.resize(K_.rows());
@@ -108,16 +113,28 @@ class SparseKktFactorization {
   /// Numerical factorisation of the current values (symbolic analysis once).
   bool factorize() {
     if (symmetric_) return factorize_with(sym_);
+    if constexpr (has_pattern_lu<Backend>::value) {
+      if (!analysed_) {
+        pattern_ = pattern_lu_.analyse(K_) && pattern_lu_.flops_per_factor_entry() <= kPatternLuMaxFlopsPerEntry;
+        if (pattern_) analysed_ = true;
+      }
+      if (pattern_) return pattern_lu_.factorize(K_);
+    }
     return factorize_with(gen_);
   }
   void solve(const Vector& b, Vector& x) const {
     pb_.noalias() = perm_ * b;
     if (symmetric_) px_ = sym_->solve(pb_);
+    else if (pattern_) pattern_solve(pb_, px_);
     else px_ = gen_->solve(pb_);
     x.noalias() = perm_.transpose() * px_;
   }
 
  private:
+  void pattern_solve(const Vector& b, Vector& x) const {
+    if constexpr (has_pattern_lu<Backend>::value) pattern_lu_.solve(b, x);
+  }
+
   template <class Solver>
   bool factorize_with(std::unique_ptr<Solver>& solver) {
     if (!solver) {
@@ -132,9 +149,12 @@ class SparseKktFactorization {
 
   SparseMatrix K_;  // P K P^T, kept alive: CHOLMOD and UMFPACK refer to it
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm_;
-  bool symmetric_ = true, analysed_ = false;
+  bool symmetric_ = true, analysed_ = false, pattern_ = false;
   std::unique_ptr<typename KktSolvers<Backend>::Ldlt> sym_;
   std::unique_ptr<typename KktSolvers<Backend>::Lu> gen_;
+  // solve() is const for the callers; KLU's solve checks its backward error
+  // and may factorise afresh, which changes the factorisation, not K.
+  mutable typename has_pattern_lu<Backend>::type pattern_lu_;
   mutable Vector pb_, px_;
 };
 

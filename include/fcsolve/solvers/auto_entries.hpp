@@ -20,7 +20,9 @@
 //              step's factorisation does not pay. Otherwise NSGS goes on, in
 //              doubling chunks, only while the linear rate measured on the
 //              last chunk predicts tol within what is left of an allowance
-//              of about a thousand sweeps (some ten Newton steps), and not
+//              of what some ten Newton steps cost, in sweeps, estimated
+//              from the symbolic analysis of W's LU (at most a thousand
+//              sweeps: ten steps where J fills in), and not
 //              at all on FC/I with d nc > n: W is then
 //              singular, the reactions are not unique and Gauss-Seidel
 //              plateaus (measured: spheres-in-a-box, d nc / n = 1.3, NSGS
@@ -69,6 +71,8 @@
 
 #include <fcsolve/core/short_number.hpp>
 #include <fcsolve/core/timer.hpp>
+#include <fcsolve/linalg/backend_traits.hpp>
+#include <fcsolve/linalg/default_backend.hpp>
 #include <fcsolve/problem/reduced_density.hpp>
 #include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/solvers/registry.hpp>
@@ -99,11 +103,23 @@ inline constexpr Index kTinyContacts = 8;
 inline constexpr int kTinySweeps = 20000;
 /// Warm-start sweeps (two full errors with NSGS' error_every = 10).
 inline constexpr int kWarmSweeps = 20;
-/// NSGS continues after the warm start if its rate predicts tol within this
-/// many sweeps: about ten Newton steps, one of which (a sparse LU of the
-/// Jacobian) cost 65 to 300 sweeps on most shared problems (~2000 on the
-/// 356-sphere pile).
+/// NSGS continues after the warm start if its rate predicts tol within an
+/// allowance of about kNewtonStepsWorthSweeping Newton steps' cost, counted
+/// in sweeps (newton_step_in_sweeps), and at most this many sweeps: ten
+/// Newton steps with UMFPACK, one of which cost 65 to 300 sweeps on most
+/// shared problems (~2000 on the 356-sphere pile).
 inline constexpr double kSweepsWorthContinuing = 1000;
+inline constexpr double kNewtonStepsWorthSweeping = 10;
+/// A Newton step's cost in sweeps, modelled as a + b x with x = (the LU's
+/// estimated flops) / nnz(W): a fixed part (assembling J, the triangular
+/// solves, the line search's products with W, each a pass over about
+/// nnz(W) entries as a sweep is) and the factorisation's flops. Fitted to nsn-ac
+/// and nsgs' time per iteration on the generated corpus with KLU
+/// (docs/results.md, 2026-11-27): sphere piles x ~ 4, 14 to 51 sweeps a
+/// step; box stacks x ~ 18, 15 to 54; walls of 300, x ~ 57, 25 to 78;
+/// walls and towers of 1000, x ~ 180 to 220, 216 to 242.
+inline constexpr double kNewtonStepFixedSweeps = 25;
+inline constexpr double kNewtonStepSweepsPerFlop = 1;
 /// Sweeps of the first continuation chunk (then 2x, 4x, ...).
 inline constexpr int kFirstChunk = 40;
 /// Newton: iterations without halving the best error that count as a stall.
@@ -398,6 +414,19 @@ class StagedRun {
   double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
 
+/// What a Newton step on W costs in sweeps of NSGS, estimated from W's
+/// pattern (J = A W + B has it) by the symbolic analysis of the LU that
+/// Newton's linear solver would use (newton/linear_solvers.hpp); infinite
+/// (no estimate) without a backend PatternLU.
+inline double newton_step_in_sweeps(const LocalProblemView& p) {
+  if constexpr (has_pattern_lu<DefaultBackend>::value) {
+    typename DefaultBackend::PatternLU lu;
+    if (p.W.nonZeros() > 0 && lu.analyse(p.W))
+      return kNewtonStepFixedSweeps + kNewtonStepSweepsPerFlop * lu.estimated_flops() / double(p.W.nonZeros());
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 /// max / min over the contacts of the normal diagonal entry of W (1 when
 /// some W_NN is not positive: no mass ratio to read).
 inline double normal_diagonal_spread(const LocalProblemView& p) {
@@ -484,15 +513,18 @@ class Plan : private StagedRun<LocalProblemView> {
     // Sweeps go on, in doubling chunks, while the rate measured on the last
     // chunk predicts tol within what is left of the allowance: Gauss-Seidel
     // usually slows down as it goes, and a chunk that shows it hands over
-    // to Newton early.
+    // to Newton early. The allowance is what about ten Newton steps on W
+    // cost (at most kSweepsWorthContinuing), where Newton runs on W.
     double allowance = kSweepsWorthContinuing;
+    if (why_newton.empty() && !native_.problem)
+      allowance = std::min(allowance, kNewtonStepsWorthSweeping * newton_step_in_sweeps(p_));
     int chunk = kFirstChunk;
     while (why_newton.empty()) {
       const double predicted = rate < 1 ? std::log(tol() / best_error_) / std::log(rate)
                                         : std::numeric_limits<double>::infinity();
       const std::string prediction = "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps";
       if (!(predicted <= allowance)) {
-        why_newton = prediction + ": sweeps too slow";
+        why_newton = prediction + " (allowance " + number(allowance) + "): sweeps too slow";
         break;
       }
       const double before = best_error_;
