@@ -174,6 +174,27 @@ TEST_CASE("auto: the sweeps' allowance follows what a Newton step costs on W's p
   CHECK(dense_step >= sparse_step + 10);
   CHECK(dense_step <= kNewtonStepFixedSweeps + 36);
 }
+
+TEST_CASE("auto: sweeps that slow down hand over to Newton within the allowance", "[auto][fclib]") {
+  using namespace registry::auto_detail;
+  // Capsules: Gauss-Seidel's rate falls from 0.8 to 0.97 a sweep after the
+  // warm start (docs/results.md, 2026-11-27), Newton converges in ~10 steps
+  const fclib::Problem problem = fclib::read_problem(fcsolve_test::bundled("Capsules-i101-404.hdf5"));
+  const auto& p = std::get<LocalProblem>(problem);
+  SolveSettings settings;
+  settings.tol = 1e-8;
+  const Solution s = fcsolve::solve(p, settings);
+  INFO(s.info.message);
+  CHECK(s.info.converged());
+  CHECK(local_error(p, s.r) <= 1e-8);
+  REQUIRE(ran(s, "newton"));
+  // the sweeps after the warm start (stages before the first Newton stage)
+  int continued = 0;
+  REQUIRE(s.stages.size() >= 2);
+  CHECK(s.stages.front().name == "nsgs");
+  for (std::size_t k = 1; k < s.stages.size() && s.stages[k].name == "nsgs"; ++k) continued += s.stages[k].iterations;
+  CHECK(continued <= kNewtonStepsWorthSweeping * newton_step_in_sweeps(p));
+}
 #endif
 
 TEST_CASE("auto: a bundled FCLIB problem of each kind", "[auto][fclib]") {
