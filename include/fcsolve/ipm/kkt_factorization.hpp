@@ -115,7 +115,7 @@ class SparseKktFactorization {
     if (symmetric_) return factorize_with(sym_);
     if constexpr (has_pattern_lu<Backend>::value) {
       if (!analysed_) {
-        pattern_ = pattern_lu_.analyse(K_) && pattern_lu_.flops_per_factor_entry() <= kPatternLuMaxFlopsPerEntry;
+        pattern_ = pattern_lu_suits(pattern_lu_, K_);
         if (pattern_) analysed_ = true;
       }
       if (pattern_) return pattern_lu_.factorize(K_);
@@ -147,7 +147,7 @@ class SparseKktFactorization {
     return solver->info() == Eigen::Success;
   }
 
-  SparseMatrix K_;  // P K P^T, kept alive: CHOLMOD and UMFPACK refer to it
+  SparseMatrix K_;  // P K P^T, kept alive: CHOLMOD, UMFPACK and KLU refer to it
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm_;
   bool symmetric_ = true, analysed_ = false, pattern_ = false;
   std::unique_ptr<typename KktSolvers<Backend>::Ldlt> sym_;

@@ -40,4 +40,13 @@ struct has_dense_lu<B, std::void_t<typename B::DenseLU>> : std::true_type {
 /// 135 to 630: UMFPACK 1.4 to 8x faster (its dense fronts run in BLAS).
 inline constexpr double kPatternLuMaxFlopsPerEntry = 64;
 
+/// Analyses A's pattern with `lu` (a backend's PatternLU) and says whether
+/// A goes to it: the analysis succeeded and its flops per factor entry are
+/// at most kPatternLuMaxFlopsPerEntry. The one rule of the Newton and the
+/// interior-point systems.
+template <class PatternLU, class Sparse>
+bool pattern_lu_suits(PatternLU& lu, const Sparse& A) {
+  return lu.analyse(A) && lu.flops_per_factor_entry() <= kPatternLuMaxFlopsPerEntry;
+}
+
 }  // namespace fcsolve

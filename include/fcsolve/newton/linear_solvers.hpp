@@ -47,9 +47,7 @@ class SparseNewtonLinearSolver {
           double(J.nonZeros()) >= kDenseLuMinFill * double(J.rows()) * double(J.cols()))
         path_ = Path::dense;
       if constexpr (has_pattern_lu<Backend>::value)
-        if (path_ == Path::general && pattern_lu_.analyse(J) &&
-            pattern_lu_.flops_per_factor_entry() <= kPatternLuMaxFlopsPerEntry)
-          path_ = Path::pattern;
+        if (path_ == Path::general && pattern_lu_suits(pattern_lu_, J)) path_ = Path::pattern;
       // (Eigen's SparseLU sets no info() in analyzePattern: only factorize() reports)
       if (path_ == Path::general) lu_.analyzePattern(J);
       analysed_ = true;
