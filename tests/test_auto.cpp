@@ -67,6 +67,17 @@ bool ran(const Solution& s, const std::string& stage) {
   return false;
 }
 
+/// `auto` on p to tol, checked to converge by the independent error.
+[[maybe_unused]] Solution solved_by_auto(const LocalProblem& p, double tol) {
+  SolveSettings settings;
+  settings.tol = tol;
+  Solution s = fcsolve::solve(p, settings);
+  INFO(s.info.message);
+  CHECK(s.info.converged());
+  CHECK(local_error(p, s.r) <= tol);
+  return s;
+}
+
 }  // namespace
 
 TEST_CASE("fcsolve::solve: one contact, closed forms, local and global", "[auto][closed-form]") {
@@ -181,12 +192,8 @@ TEST_CASE("auto: sweeps that slow down hand over to Newton within the allowance"
   // warm start (docs/results.md, 2026-11-27), Newton converges in ~10 steps
   const fclib::Problem problem = fclib::read_problem(fcsolve_test::bundled("Capsules-i101-404.hdf5"));
   const auto& p = std::get<LocalProblem>(problem);
-  SolveSettings settings;
-  settings.tol = 1e-8;
-  const Solution s = fcsolve::solve(p, settings);
+  const Solution s = solved_by_auto(p, 1e-8);
   INFO(s.info.message);
-  CHECK(s.info.converged());
-  CHECK(local_error(p, s.r) <= 1e-8);
   REQUIRE(ran(s, "newton"));
   // the sweeps after the warm start (stages before the first Newton stage)
   int continued = 0;
@@ -194,6 +201,29 @@ TEST_CASE("auto: sweeps that slow down hand over to Newton within the allowance"
   CHECK(s.stages.front().name == "nsgs");
   for (std::size_t k = 1; k < s.stages.size() && s.stages[k].name == "nsgs"; ++k) continued += s.stages[k].iterations;
   CHECK(continued <= kNewtonStepsWorthSweeping * newton_step_in_sweeps(p));
+}
+
+TEST_CASE("auto: sweeps that spend the allowance just short of tol finish with a last chunk",
+          "[auto][fclib]") {
+  using namespace registry::auto_detail;
+  if (!fcsolve_test::have_shared_data()) {
+    WARN("no shared FCLIB collection at " << fcsolve_test::shared_data_dir()
+                                          << ": LMGC_100_PR_PerioBox is not bundled, case skipped");
+    return;
+  }
+  // PerioBox at 1e-4: the allowance (three Newton steps, about 225 sweeps)
+  // runs out some 15 sweeps short of tol, a fraction of one step
+  const fclib::Problem problem = fclib::read_problem(fcsolve_test::shared_data_dir() +
+                                                     "/local/LMGC_100_PR_PerioBox-i00361-60-03000.hdf5");
+  const auto& p = std::get<LocalProblem>(problem);
+  const Solution s = solved_by_auto(p, 1e-4);
+  INFO(s.info.message);
+  CHECK_FALSE(ran(s, "newton"));
+  REQUIRE(!s.stages.empty());
+  const auto& final_stage = s.stages.back();
+  CHECK(final_stage.name == "nsgs");
+  CHECK(final_stage.why.find("last chunk") != std::string::npos);
+  CHECK(final_stage.iterations <= std::ceil(newton_step_in_sweeps(p)));
 }
 #endif
 

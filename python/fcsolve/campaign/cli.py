@@ -65,7 +65,7 @@ def parser():
     b.add_argument("--hot-below", type=float, default=None, metavar="SECONDS",
                    help="time solved runs faster than this again as the fastest of many solves "
                         "in one process (the command's --repeat); 0: fresh processes only; "
-                        "default 0.01")
+                        "default 0.1")
     b.add_argument("--keep-solutions", action="store_true", help="keep DIR/solutions/*.hdf5")
     b.add_argument("--report", action="store_true", help="then write the report (fcsolve report)")
     r = sub.add_parser("report", help="charts and an HTML page from DIR/results.csv")
