@@ -28,9 +28,6 @@
 //              singular, the reactions are not unique and Gauss-Seidel
 //              plateaus (measured: spheres-in-a-box, d nc / n = 1.3, NSGS
 //              stuck at 6e-8).
-//   1b ipm     with mu > 0 and a W_NN spread >= 30 (mass ratios of 30 and
-//              more): the nonsmooth interior point (`nipm`) on a share of
-//              the budget before Newton, which crawls there (measured).
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence);
@@ -156,14 +153,6 @@ inline constexpr int kBridgeSweeps = 500;
 inline constexpr double kInverseMassFill = 4;
 /// Below this many entries of M^-1 H either way is cheap: reduce.
 inline constexpr double kSmallInverseMassProduct = 1e5;
-/// Spread max/min of the normal diagonal W_NN over the contacts from which
-/// the interior point runs before Newton. W_NN sums the inverse masses (and
-/// lever arms) of the two bodies, so the spread is a measured mass ratio.
-/// Generated heavy-on-light stacks: spread 11 (mass ratio 10), Newton
-/// within 1.8x of the fastest solver; spread 110 and 1100 (mass ratios 100,
-/// 1000), the Newton stages 9 to 16x slower than `nipm`, which was within
-/// 2.2x of the fastest. 30 lies between, on a log scale.
-inline constexpr double kMassSpreadForInteriorPoint = 30;
 /// FC/I reduced to FC/II: from this ratio nnz(W) / (nnz(H) + nnz(M)) on,
 /// the Newton and interior-point stages run on FC/I in (v, r), where a
 /// step factorises a matrix of H's and M's sparsity instead of W's. W
@@ -519,11 +508,12 @@ class Plan : private StagedRun<LocalProblemView> {
     double rate = 1;
     if (h.size() >= 20 && h[9] > 0 && h[19] > 0 && h[19] < h[9]) rate = std::pow(h[19] / h[9], 0.1);
     else if (e_start > 0 && best_error_ < e_start) rate = std::pow(best_error_ / e_start, 1.0 / kWarmSweeps);
-    if (f_.normal_spread >= kMassSpreadForInteriorPoint) {
-      interior_point("W_NN spread " + number(f_.normal_spread) + " >= " + number(kMassSpreadForInteriorPoint) +
-                     ": mass ratios, Newton crawls");
-      if (done()) return finish();
-    }
+    // Mass ratios (a large W_NN spread) do not send the plan to the interior
+    // point before Newton: full Newton steps stall within their window where
+    // they crawl (heavy-on-light stacks: the interior point then runs, some
+    // 12 steps later) and converge where they do not (a sphere pile with
+    // mass ratio 100: 5 to 18 steps, 6x faster than the interior point
+    // first; docs/results.md, 2026-11-27).
     std::string why_newton;
     if (f_.global && f_.contact_ratio > 1)
       why_newton = "d*nc/n = " + number(f_.contact_ratio) +
