@@ -202,3 +202,26 @@ def test_auto_listed_among_the_solvers():
     p = run("solvers", "--json")
     names = {e["name"]: e for e in json.loads(p.stdout)}
     assert "auto" in names and names["auto"]["local"] and names["auto"]["global_native"]
+
+
+def test_bridge_sweeps_stop_after_a_first_chunk_that_does_not_help(tmp_path):
+    # frictionless heavy-on-light stack, mass ratio 1e4: full and line-searched
+    # Newton steps stall, no interior point can run (mu = 0), and sweeps from
+    # Newton's iterate do not lower the error: the bridge stops after its
+    # first chunk and Newton runs again
+    local = tmp_path / "stack-local.hdf5"
+    g = run("generate", "heavy-on-light", "--contacts", 300, "--seed", 39, "--mu", 0,
+            "--mass-ratio", 10000, "--local-out", local)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(local, "--max-time", 20, out=sol)
+    assert code == 0 and res["status"] == "converged", res
+    check_stages(res)
+    stages = res["stages"]
+    bridge = next(k for k in range(1, len(stages))
+                  if stages[k]["stage"] == "nsgs" and stages[k - 1]["stage"].startswith("newton"))
+    assert stages[bridge]["iterations"] <= 50, res["message"]
+    best_before = min(st["error"] for st in stages[:bridge])
+    if stages[bridge]["error"] >= best_before:
+        assert stages[bridge + 1]["stage"].startswith("newton"), res["message"]
+    assert independent_error(local, sol) <= 1e-8
