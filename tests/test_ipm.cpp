@@ -331,6 +331,72 @@ TEST_CASE("Rank-deficient H: duplicated contacts", "[ipm][rank]") {
   }
 }
 
+TEST_CASE("Frictionless contacts (mu = 0): the normal complementarity", "[ipm][frictionless]") {
+  // A contact with mu = 0 keeps its Lorentz block without the tangential
+  // coupling (form_common.hpp, frictionless()): r_T = 0 exactly, and
+  // r_N >= 0, u_N >= 0, r_N u_N = 0.
+  SECTION("one contact, closed form: pressed (r = (1, 0, 0)) and taking off (r = 0)") {
+    struct Case {
+      Eigen::Vector3d q, r;
+    };
+    const std::vector<Case> cases = {{{-1, 0.5, 0.2}, {1, 0, 0}}, {{1, 0.3, -0.2}, {0, 0, 0}}};
+    for (const auto& c : cases) {
+      CAPTURE(c.q.transpose());
+      const GlobalProblem g = unit_global(0.0, c.q);
+      for (const char* name : {"nipm", "aclm-newton", "aclm-fp", "ipm-socqp"}) {
+        CAPTURE(name);
+        const auto out = run_entry(g, name, 1e-10);
+        CHECK(out.info.converged());
+        CHECK((out.r - c.r).norm() <= 1e-8);
+        CHECK(out.r.tail<2>().isZero(0.0));
+        auto req = registry::make_request(fcsolve_test::catalogue_find(name));
+        req.common.tol = 1e-10;
+        const LocalProblem p = unit_local(0.0, c.q);
+        const auto local = fcsolve_test::solve_named(LocalProblemView(p), name, req);
+        CHECK(local.info.converged());
+        CHECK(local_error(p, local.r) <= 1e-10);
+        CHECK((local.r - c.r).norm() <= 1e-8);
+      }
+    }
+  }
+  SECTION("real W with every other contact frictionless, and with none frictional") {
+    // (Not Capsules: with mixed coefficients, 0 or 0.35 beside its 0.7, the
+    // interior-point family stalls near 1e-7 on it; uniform ones it solves.)
+    for (const char* file : {"Rover1039.hdf5", "OneObject-i1028-138.hdf5", "BoxesStack1-i100000-32.hdf5",
+                             "FC3D_Example1.hdf5"}) {
+      LocalProblem p = fclib::read_local(fcsolve_test::bundled(file));
+      for (bool all : {false, true}) {
+        for (Index a = 0; a < p.num_contacts(); ++a)
+          if (all || a % 2 == 0) p.mu[a] = 0;
+        for (const char* name : {"nipm", "aclm-newton"}) {
+          CAPTURE(file, all, name);
+          auto req = registry::make_request(fcsolve_test::catalogue_find(name));
+          const auto out = fcsolve_test::solve_named(LocalProblemView(p), name, req);
+          INFO(out.info.message);
+          CHECK(out.info.converged());
+          CHECK(local_error(p, out.r) <= 1e-8);
+          // r_T = 0 up to the rounding of the final natural-map Newton steps
+          const double scale = std::max(1.0, out.r.cwiseAbs().maxCoeff());
+          for (Index a = 0; a < p.num_contacts(); ++a)
+            if (p.mu[a] == 0) CHECK(out.r.segment<2>(3 * a + 1).cwiseAbs().maxCoeff() <= 1e-12 * scale);
+        }
+      }
+    }
+  }
+  SECTION("FC/I with every contact frictionless") {
+    for (const char* file : {"GFC3D_Example1.hdf5", "Box_Stacks-i0035-31-0.hdf5"}) {
+      auto g = std::get<GlobalProblem>(fclib::read_problem(fcsolve_test::bundled(file)));
+      g.mu.setZero();
+      for (const char* name : {"nipm", "aclm-newton"}) {
+        CAPTURE(file, name);
+        const auto out = run_entry(g, name, 1e-8);
+        INFO(out.info.message);
+        CHECK(out.info.converged());
+      }
+    }
+  }
+}
+
 TEST_CASE("Unsymmetric M (LMGC): the error is against the data as given", "[ipm][asym]") {
   const auto g = std::get<GlobalProblem>(
       fclib::read_problem(fcsolve_test::bundled("LMGC_GlobalFrictionContactProblem00046.hdf5")));
@@ -421,8 +487,9 @@ TEST_CASE("Bad input is a typed exception", "[ipm][input]") {
   GlobalSocqpIpm<Coulomb3D> ipm;
   Vector r = Vector::Zero(3), v(3);
   CHECK_THROWS_AS(ipm.solve(r, v), UsageError);                      // compute() not called
-  const GlobalProblem no_friction = unit_global(0.0, {-1, 0, 0});
-  CHECK_THROWS_AS(ipm.compute(no_friction), UsageError);  // mu = 0
+  GlobalProblem negative_mu = unit_global(0.3, {-1, 0, 0});
+  negative_mu.mu[0] = -0.1;
+  CHECK_THROWS_AS(ipm.compute(negative_mu), InvalidProblem);
   GlobalProblem bad = unit_global(0.3, {-1, 0, 0});
   bad.f.resize(2);
   CHECK_THROWS_AS(ipm.compute(bad), InvalidProblem);

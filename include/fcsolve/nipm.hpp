@@ -6,7 +6,8 @@
 //                         Cadoux 2013); ipm::diagnose  rank, cond(W), ratio
 // Each solver works on the global form (M, H: GlobalSocqpIpm, GlobalAclm,
 // GlobalNipm) or the reduced form (W: LocalSocqpIpm, LocalAclm, LocalNipm),
-// templated on the cone (Coulomb3D or Coulomb2D; mu > 0), and follows the
+// templated on the cone (Coulomb3D or Coulomb2D; a contact with mu = 0 keeps
+// only its normal complementarity, ipm/form_common.hpp), and follows the
 // solver contract (docs/architecture.md):
 //   fcsolve::ipm::GlobalNipm<fcsolve::Coulomb3D> nipm;
 //   nipm.compute(problem);

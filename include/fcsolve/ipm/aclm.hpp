@@ -197,11 +197,9 @@ class AclmSolver : public IpmSolverBase<Form> {
     o.s = next;
   }
 
-  /// s_a = ||u_T^a|| of u.
+  /// s_a = ||u_T^a|| of u (0 on a frictionless contact: mu s = 0).
   Vector tangential_speeds_of_u(const Vector& u) const {
-    Vector s(this->form_->num_contacts());
-    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<D - 1>(a * D + 1).norm();
-    return s;
+    return tangential_speeds<D>(u, this->form_->mu());
   }
 
   /// The starting s of the best point so far (the warm start): ||u_T||, or 0

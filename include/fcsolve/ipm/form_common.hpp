@@ -76,17 +76,62 @@ double natural_map_squared(const Vector& r, const Vector& u, const Eigen::Ref<co
                 : natural_map_norms<CoulombCone<D>>(r, u, mu).squared_sum;
 }
 
-/// r = D^-1 y: the reactions of the Lorentz-coordinate y.
+/// A frictionless contact (mu = 0) in Lorentz coordinates. Its cone K_0 is
+/// the normal half-line and K_0* the half-space u_N >= 0, so it keeps the
+/// Lorentz block but drops its tangential coupling: D^-1 = diag(1, 0, ..)
+/// instead of diag(1/mu, 1, ..), i.e. y_N = r_N, r_T = 0, x_T = 0 and no
+/// De Saxce shift (mu s = 0). The block's complementarity x o y = mu e then
+/// reduces to x_N y_N = mu with y_T -> 0 on the central path: the normal
+/// complementarity r_N >= 0, u_N >= 0, r_N u_N = 0 of the frictionless law.
+inline bool frictionless(double mu) { return !(mu > 0); }
+
+/// The diagonal of D^-1, one entry per unknown: (1/mu, 1, ..) per frictional
+/// contact, (1, 0, ..) per frictionless one (see frictionless()).
+template <int D>
+Vector lorentz_inverse_scaling(const Eigen::Ref<const Vector>& mu) {
+  Vector dinv = Vector::Ones(mu.size() * D);
+  for (Index a = 0; a < mu.size(); ++a) {
+    if (frictionless(mu[a])) dinv.template segment<D - 1>(a * D + 1).setZero();
+    else dinv[a * D] = 1 / mu[a];
+  }
+  return dinv;
+}
+
+/// r = D^-1 y: the reactions of the Lorentz-coordinate y (r_T = 0 on a
+/// frictionless contact).
 template <int D>
 void reaction_from_lorentz(const Vector& y, const Eigen::Ref<const Vector>& mu, Vector& r) {
   r = y;
-  for (Index a = 0; a < mu.size(); ++a) r[a * D] /= mu[a];
+  for (Index a = 0; a < mu.size(); ++a) {
+    if (frictionless(mu[a])) r.template segment<D - 1>(a * D + 1).setZero();
+    else r[a * D] /= mu[a];
+  }
 }
 
-/// Adds s_a to the normal entry of each contact block of z (z += E s).
+/// s_a = ||u_T^a||, the tangential speeds of u; 0 on a frictionless contact,
+/// where the De Saxce shift mu s vanishes whatever s is.
+template <int D>
+Vector tangential_speeds(const Vector& u, const Eigen::Ref<const Vector>& mu) {
+  Vector s(mu.size());
+  for (Index a = 0; a < s.size(); ++a)
+    s[a] = frictionless(mu[a]) ? 0.0 : u.template segment<D - 1>(a * D + 1).norm();
+  return s;
+}
+
+/// Adds s_a to the normal entry of each contact block of z (z += s e): the
+/// shift that moves a point into the interior of the cones.
 template <int D>
 void add_normal(Vector& z, const Vector& s) {
   for (Index a = 0; a < s.size(); ++a) z[a * D] += s[a];
+}
+
+/// z += E s, E the De Saxce shift in Lorentz coordinates: s_a on the normal
+/// entry of a frictional contact (u~_N / mu = u_N / mu + s), nothing on a
+/// frictionless one (mu s = 0).
+template <int D>
+void add_friction_shift(Vector& z, const Vector& s, const Eigen::Ref<const Vector>& mu) {
+  for (Index a = 0; a < s.size(); ++a)
+    if (!frictionless(mu[a])) z[a * D] += s[a];
 }
 
 /// dz_a += e (n_a . dz_a): applies P = I + e n^T contact by contact.

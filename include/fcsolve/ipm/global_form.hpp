@@ -46,11 +46,20 @@ class GlobalForm : public FormBase<ConeType, Factorization, GlobalProblemView, -
     nc_ = p.num_contacts();
     reduction_.compute(p, /*form_W=*/false);
     this->q_norm_ = reduction_.free_velocity_norm();
+    // Hs = H D^-1, w0 = D^-1 w (form_common.hpp: a frictionless contact's
+    // tangential columns and entries are 0)
     Hs_ = SparseMatrix(p.H);
-    for (Index a = 0; a < nc_; ++a) Hs_.col(a * D) /= p.mu[a];
-    Hs_.makeCompressed();
     w0_ = p.w;
-    for (Index a = 0; a < nc_; ++a) w0_[a * D] /= p.mu[a];
+    for (Index a = 0; a < nc_; ++a) {
+      if (frictionless(p.mu[a])) {
+        for (int k = 1; k < D; ++k) Hs_.col(a * D + k) *= 0.0;
+        w0_.template segment<D - 1>(a * D + 1).setZero();
+      } else {
+        Hs_.col(a * D) /= p.mu[a];
+        w0_[a * D] /= p.mu[a];
+      }
+    }
+    Hs_.makeCompressed();
     this->symmetric_data_ = relative_asymmetry(p.M) <= kSymmetryRoundoff;
     // A0 = [M -Hs; -Hs^T 0], G = [0; I].
     std::vector<Eigen::Triplet<double, int>> t;
@@ -101,7 +110,7 @@ class GlobalForm : public FormBase<ConeType, Factorization, GlobalProblemView, -
     r_d -= p_->f;
     r_p.noalias() = Hs_.transpose() * it.v;
     r_p += w0_ - it.x;
-    add_normal<D>(r_p, it.s);
+    add_friction_shift<D>(r_p, it.s, p_->mu);
   }
 
   /// The Newton direction for the complementarity right-hand side xi

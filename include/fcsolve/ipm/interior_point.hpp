@@ -163,7 +163,8 @@ class InteriorPoint {
     add_normal<D>(it.x, Vector::Constant(nc, dx));
     add_normal<D>(it.y, Vector::Constant(nc, dy));
     if (coupled)
-      for (Index a = 0; a < nc; ++a) it.s[a] = it.x.template segment<D - 1>(a * D + 1).norm();
+      for (Index a = 0; a < nc; ++a)
+        it.s[a] = frictionless(form_.mu()[a]) ? 0.0 : it.x.template segment<D - 1>(a * D + 1).norm();
   }
 
   /// Moves a (near-)boundary point into int L: every block gets at least
@@ -209,7 +210,7 @@ class InteriorPoint {
     xi_.setZero();
     r_d_.setZero();
     rp_tilde_.setZero();
-    add_normal<D>(rp_tilde_, p);
+    add_friction_shift<D>(rp_tilde_, p, form_.mu());
     form_.direction(state_, xi_, r_d_, rp_tilde_, d_, refinement);
     dx = d_.x;
   }
@@ -223,13 +224,15 @@ class InteriorPoint {
     small_steps_ = 0;
   }
 
-  /// Residuals r_d, r_p (and r_s = s - ||x_T|| when coupled) at `it`, and
-  /// its error: frozen-s natural map, or FCLIB when coupled.
+  /// Residuals r_d, r_p (and r_s = s - ||x_T|| when coupled; r_s = s on a
+  /// frictionless contact, whose s is 0) at `it`, and its error:
+  /// frozen-s natural map, or FCLIB when coupled.
   double residuals_and_error(const Iterate& it, bool coupled) {
     form_.residuals(it, r_d_, r_p_);
     if (coupled)
       for (Index a = 0; a < form_.num_contacts(); ++a)
-        r_s_[a] = it.s[a] - it.x.template segment<D - 1>(a * D + 1).norm();
+        r_s_[a] = frictionless(form_.mu()[a]) ? it.s[a]
+                                              : it.s[a] - it.x.template segment<D - 1>(a * D + 1).norm();
     return form_.error(it, !coupled);
   }
 
@@ -300,8 +303,8 @@ class InteriorPoint {
         const auto xt = it.x.template segment<D - 1>(a * D + 1);
         const double nt = xt.norm();
         auto& na = state_.normal[std::size_t(a)];
-        na.setZero();
-        if (nt > 0) na.template tail<D - 1>() = xt / nt;
+        na.setZero();  // and stays 0 on a frictionless contact: no coupling
+        if (nt > 0 && !frictionless(form_.mu()[a])) na.template tail<D - 1>() = xt / nt;
       }
     return true;
   }
@@ -326,7 +329,7 @@ class InteriorPoint {
   double affine_step(const Iterate& it, double mu, const EngineRun& opt) {
     const Index nc = form_.num_contacts();
     rp_tilde_ = r_p_;
-    if (opt.coupled) add_normal<D>(rp_tilde_, Vector(-r_s_));
+    if (opt.coupled) add_friction_shift<D>(rp_tilde_, Vector(-r_s_), form_.mu());
     for (Index a = 0; a < nc; ++a) xi_.template segment<D>(a * D) = -lambda(a);
     newton_direction(rp_tilde_, opt);
     const double alpha_aff = std::min(1.0, max_step());

@@ -62,11 +62,6 @@ class IpmSolverBase {
     if (p.d != D)
       throw UsageError("interior-point solver compiled for d = " + std::to_string(D) +
                        ", problem has d = " + std::to_string(p.d));
-    for (Index a = 0; a < p.num_contacts(); ++a)
-      if (!(p.mu[a] > 0))
-        throw UsageError("the interior-point solvers map each Coulomb cone onto the Lorentz cone "
-                         "and need mu > 0 (contact " + std::to_string(a) + " has mu = " +
-                         std::to_string(p.mu[a]) + ")");
     if constexpr (Form::is_global)
       if (p.has_bilateral())
         throw UsageError("the global interior-point form has no bilateral constraints (G, b): "

@@ -33,8 +33,7 @@ class LocalForm : public FormBase<ConeType, Factorization, LocalProblemView, +1>
     p_.emplace(p);
     m_ = p.size();
     nc_ = p.num_contacts();
-    Vector dinv = Vector::Ones(m_);
-    for (Index a = 0; a < nc_; ++a) dinv[a * D] = 1 / p.mu[a];
+    const Vector dinv = lorentz_inverse_scaling<D>(p.mu);
     Ws_ = dinv.asDiagonal() * SparseMatrix(p.W) * dinv.asDiagonal();
     Ws_.makeCompressed();
     q0_ = dinv.cwiseProduct(Vector(p.q));
@@ -60,7 +59,7 @@ class LocalForm : public FormBase<ConeType, Factorization, LocalProblemView, +1>
     r_d.resize(0);
     r_p.noalias() = Ws_ * it.y;
     r_p += q0_ - it.x;
-    add_normal<D>(r_p, it.s);
+    add_friction_shift<D>(r_p, it.s, p_->mu);
   }
 
   void direction(const ContactState<D>& cs, const Vector& xi, const Vector& /*r_d*/,

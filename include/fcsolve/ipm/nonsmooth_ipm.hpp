@@ -202,12 +202,9 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     InteriorPoint<Form>::push_inside(it, t * xs, t * ys);
   }
 
-  /// s_a = ||u_T^a|| of the best point.
+  /// s_a = ||u_T^a|| of the best point (0 on a frictionless contact).
   Vector tangential_speeds_of_best() const {
-    const Vector u = this->velocity_of(this->best_.w);
-    Vector s(this->form_->num_contacts());
-    for (Index a = 0; a < s.size(); ++a) s[a] = u.template segment<D - 1>(a * D + 1).norm();
-    return s;
+    return tangential_speeds<D>(this->velocity_of(this->best_.w), this->form_->mu());
   }
 
   NipmSettings settings_;
