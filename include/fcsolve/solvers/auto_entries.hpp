@@ -11,9 +11,9 @@
 //              n and d nc / n (rank deficiency of W = H^T M^-1 H) for FC/I,
 //              the spread max/min of W_NN over the contacts (mass ratios).
 //   0 sticking FC/I reduced to FC/II whose W is much denser than H and M
-//              (see below), mu > 0: the interior point on the convex
-//              associated problem (`ipm-socqp`, 30 iterations at most),
-//              which is Coulomb's where every contact sticks.
+//              (see below): the interior point on the convex associated
+//              problem (`ipm-socqp`, 30 iterations at most), which is
+//              Coulomb's where every contact sticks or is frictionless.
 //   1 sweeps   NSGS (`nsgs`): a warm start and a first measured convergence
 //              rate. Small problems (nc <= kTinyContacts) stay with NSGS to
 //              the end: a sweep costs next to nothing there and a Newton
@@ -31,7 +31,7 @@
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence);
-//              if they stall, with mu > 0 and unless it ran at 1b, the
+//              if they stall, unless it ran at 1b, the
 //              nonsmooth interior point (`nipm`), 100 iterations at most,
 //              on a share of the budget (its iteration count barely feels
 //              a singular W: rigid stacks, walls, piles), then the
@@ -42,7 +42,7 @@
 //              only if those lowered the error), then
 //   4 newton   Newton once more from what the sweeps reached (a Newton
 //              stage often converges from a better start where it stalled),
-//   5 ipm      with mu > 0, if it has not run (full steps cut by the time
+//   5 ipm      if it has not run (full steps cut by the time
 //              budget at 2): the interior point as above,
 //   6 proximal the proximal point method (`ppa`): Newton on the
 //              regularised subproblems W + alpha I, robust where W is
@@ -490,19 +490,24 @@ class Plan : private StagedRun<LocalProblemView> {
       if (done()) return finish();
       return robust_tail("nsgs did not reach tol");
     }
-    if (native_.problem && f_.mu_min > 0) {
+    if (native_.problem) {
       // Where every contact sticks (u_T = 0), Coulomb's law and the
       // associated law of the convex SOCQP (velocities in the dual cone:
       // u_N >= mu ||u_T||, here with u_T = 0) have the same solutions (De
       // Saxce & Feng 1991, the bipotential; Acary & Brogliato 2008, ch. 13):
       // stacks at rest stick, and an interior point solves the convex
-      // problem in some ten iterations of FC/I's cheap linear algebra.
+      // problem in some ten iterations of FC/I's cheap linear algebra. A
+      // frictionless contact has no De Saxce shift (mu ||u_T|| = 0): the two
+      // laws agree there whether it slides or not, so a frictionless scene
+      // is solved by this probe outright (wall, tower of the corpus with
+      // mu = 0: 8.1 -> 2.9 ms, 10.6 -> 5.4 ms, docs/results.md).
       // Measured on the rigid corpus given as FC/I (docs/results.md,
       // "auto: a sticking probe"): `ipm-socqp` alone solved 16 of the 21
       // towers and walls where this runs to 1e-8, in 5 to 50 % of auto's
       // time; where a contact slides it stalls, and the plan goes on.
       native_stage("sticking", "ipm-socqp", budget(0.2), std::min(kStickingProbeIterations, max_iter_left()),
-                   "W much denser than H and M: if every contact sticks, the convex associated problem is Coulomb's");
+                   "W much denser than H and M: if every contact sticks or is frictionless, the convex associated "
+                   "problem is Coulomb's");
       if (done()) return finish();
     }
     const double e_start = best_error_;
@@ -578,7 +583,7 @@ class Plan : private StagedRun<LocalProblemView> {
   /// iterate.
   ///
   /// When the full steps stall, the interior point runs before the line
-  /// search (once per run, mu > 0): where full steps stall on the rigid
+  /// search (once per run): where full steps stall on the rigid
   /// corpus (box stacks, walls, towers, sphere piles: W singular, many
   /// contacts per body) `nipm` converged in 11 to 68 iterations on 10 of 13
   /// problems, in 0.3 to 0.5x the time the Newton stages then took
@@ -636,12 +641,13 @@ class Plan : private StagedRun<LocalProblemView> {
   /// it stops short of tol, its iterate is a good start for Newton on
   /// heavy-on-light stacks (1e-5 after 100 iterations, then 2 to 4 Newton
   /// steps to 1e-10); starting the next stages from the iterate before it
-  /// instead cost those 10 s and more (measured, not kept). The Lorentz-cone
-  /// map of the IPM needs mu > 0; a share of the budget so that the tail
-  /// keeps the rest.
+  /// instead cost those 10 s and more (measured, not kept). Frictionless
+  /// contacts included (ipm/form_common.hpp: heavy-on-light with mu = 0,
+  /// 52 -> 28 ms where the line search took over before); a share of the
+  /// budget so that the tail keeps the rest.
   /// Runs at most once (a second run would start from the same centre).
   void interior_point(const std::string& why) {
-    if (!(f_.mu_min > 0) || interior_point_ran_) return;
+    if (interior_point_ran_) return;
     interior_point_ran_ = true;
     const int max_iter = std::min(kInteriorPointIterations, max_iter_left());
     if (native_.problem)
