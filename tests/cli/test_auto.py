@@ -204,18 +204,25 @@ def test_auto_listed_among_the_solvers():
     assert "auto" in names and names["auto"]["local"] and names["auto"]["global_native"]
 
 
-def test_frictionless_scene_gets_the_interior_point_when_full_newton_steps_stall(tmp_path):
-    # frictionless heavy-on-light stack, mass ratio 1e4: full Newton steps
-    # stall; the interior point handles mu = 0 (its Lorentz block without
-    # the tangential part) and solves it, before any line search
+def solved_heavy_on_light_stack(tmp_path, *scene):
+    """A heavy-on-light stack of 300 contacts, mass ratio 1e4, as FC/II, solved
+    by `auto` (converged, stages well-formed): (problem, solution, JSON)."""
     local = tmp_path / "stack-local.hdf5"
-    g = run("generate", "heavy-on-light", "--contacts", 300, "--seed", 39, "--mu", 0,
-            "--mass-ratio", 10000, "--local-out", local)
+    g = run("generate", "heavy-on-light", "--contacts", 300, "--mass-ratio", 10000, *scene,
+            "--local-out", local)
     assert g.returncode == 0, g.stderr
     sol = tmp_path / "sol.hdf5"
     code, res = solve_json(local, "--max-time", 20, out=sol)
     assert code == 0 and res["status"] == "converged", res
     check_stages(res)
+    return local, sol, res
+
+
+def test_frictionless_scene_gets_the_interior_point_when_full_newton_steps_stall(tmp_path):
+    # frictionless heavy-on-light stack, mass ratio 1e4: full Newton steps
+    # stall; the interior point handles mu = 0 (its Lorentz block without
+    # the tangential part) and solves it, before any line search
+    local, sol, res = solved_heavy_on_light_stack(tmp_path, "--seed", 39, "--mu", 0)
     names = [st["stage"] for st in res["stages"]]
     assert "ipm" in names, res["message"]
     assert "newton" not in names, res["message"]  # no line-searched Newton was needed
@@ -227,14 +234,8 @@ def test_bridge_sweeps_stop_after_a_first_chunk_that_does_not_help(tmp_path):
     # full and line-searched Newton steps stall on either side of the
     # interior point, and sweeps from Newton's iterate do not lower the
     # error: the bridge stops after its first chunk and Newton runs again
-    local = tmp_path / "stack-local.hdf5"
-    g = run("generate", "heavy-on-light", "--contacts", 300, "--seed", 41, "--mu", 1,
-            "--mass-ratio", 10000, "--penetration-correction", 0.5, "--local-out", local)
-    assert g.returncode == 0, g.stderr
-    sol = tmp_path / "sol.hdf5"
-    code, res = solve_json(local, "--max-time", 20, out=sol)
-    assert code == 0 and res["status"] == "converged", res
-    check_stages(res)
+    local, sol, res = solved_heavy_on_light_stack(tmp_path, "--seed", 41, "--mu", 1,
+                                                  "--penetration-correction", 0.5)
     stages = res["stages"]
     bridge = next(k for k in range(1, len(stages))
                   if stages[k]["stage"] == "nsgs" and stages[k - 1]["stage"].startswith("newton"))
