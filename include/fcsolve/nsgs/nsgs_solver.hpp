@@ -16,9 +16,9 @@
 // (nsgs/contact_colouring.hpp) and updates the contacts of one colour with
 // an OpenMP `parallel for` (static schedule, settings().threads threads).
 // They read only reactions of other colours, and every sum over contacts is
-// taken serially in a fixed order after the loop, so the iterates do not
-// depend on the number of threads. Without OpenMP the same loop runs
-// serially. Column-update storage adds the colour's columns to u after the
+// taken over fixed chunks of contacts whose sums are added in order, so the
+// iterates do not depend on the number of threads. Without OpenMP the same
+// loop runs serially. Column-update storage adds the colour's columns to u after the
 // parallel loop (two contacts of a colour may touch the same rows of u).
 // Block-sparse storage keeps a second copy of W, q and the local data
 // renumbered so that each colour is contiguous (SlotLayout): a colour then
@@ -539,30 +539,73 @@ class Nsgs {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads) if (threads > 1)
 #endif
-    for (const Index c : colour_order_) {
-      const Index begin = colouring.start[c], end = colouring.start[c + 1];
+    {
+      for (const Index c : colour_order_) {
+        const Index begin = colouring.start[c], end = colouring.start[c + 1];
+        // Static: each thread streams one range of the colour's rows of W.
+        // Chunks handed out dynamically were no faster at 10^4 contacts and
+        // as slow as one thread at 10^5 (docs/results.md, "Parallel NSGS").
 #ifdef _OPENMP
 #pragma omp for schedule(static)
 #endif
-      for (Index i = begin; i < end; ++i) updates_[i] = update(i);
-      if constexpr (!Storage::row_access) {
+        for (Index i = begin; i < end; ++i) updates_[i] = update(i);
+        if constexpr (!Storage::row_access) {
 #ifdef _OPENMP
 #pragma omp single
 #endif
-        record_colour(c);
+          record_colour(c);
+        }
+      }
+      // The slot layout's sums and its copy back into r, chunk by chunk in
+      // parallel (they ran on one thread after the loops); fixed chunks
+      // summed in slot order: the same sums for any number of threads.
+      if constexpr (use_slots) {
+        const Index slots = static_cast<Index>(colouring.contacts.size());
+#ifdef _OPENMP
+#pragma omp for schedule(static)
+#endif
+        for (Index k = 0; k < num_chunks(slots); ++k) {
+          ChunkSum& sum = chunk_sums_[static_cast<std::size_t>(k)];
+          sum = ChunkSum{};
+          for (Index i = k * kParallelChunk; i < std::min(slots, (k + 1) * kParallelChunk); ++i) {
+            const ContactUpdate& c = updates_[static_cast<std::size_t>(i)];
+            sum.change2 += c.dr2;
+            sum.skipped += c.skipped ? 1 : 0;
+            sum.failures += c.failures;
+            r.template segment<d>(colouring.contacts[i] * d) = slots_.r.template segment<d>(i * d);
+          }
+        }
       }
     }
-    if constexpr (Storage::row_access)
+    if constexpr (use_slots) {
+      for (Index k = 0; k < num_chunks(static_cast<Index>(colouring.contacts.size())); ++k) {
+        const ChunkSum& sum = chunk_sums_[static_cast<std::size_t>(k)];
+        out.change2 += sum.change2;
+        out.skipped += sum.skipped;
+        local_failures_ += sum.failures;
+      }
+    } else if constexpr (Storage::row_access) {
       for (const Index c : colour_order_) record_colour(c);
-    if constexpr (use_slots) slots_.scatter(colouring, r);
+    }
     return out;
   }
+
+  /// Contacts per chunk of the parallel loops of the coloured ordering.
+  static constexpr Index kParallelChunk = 64;
+  static Index num_chunks(Index n) { return (n + kParallelChunk - 1) / kParallelChunk; }
+  struct ChunkSum {
+    double change2 = 0;
+    Index skipped = 0;
+    long long failures = 0;
+  };
 
   void prepare_colouring() {
     if (colouring_) return;
     colouring_ = colour_contacts(problem_->W, d);
     colour_order_.resize(static_cast<std::size_t>(colouring_->num_colours()));
     updates_.resize(colouring_->contacts.size());
+    chunk_sums_.resize(static_cast<std::size_t>(num_chunks(static_cast<Index>(colouring_->contacts.size()))));
+    error_chunks_.resize(chunk_sums_.size());
     if constexpr (use_slots) slots_.compute(*problem_, *colouring_, data_);
   }
 
@@ -601,10 +644,6 @@ class Nsgs {
       for (Index i = 0; i < static_cast<Index>(c.contacts.size()); ++i)
         r.template segment<d>(i * d) = from.template segment<d>(c.contacts[i] * d);
     }
-    void scatter(const ContactColouring& c, Eigen::Ref<Vector> to) const {
-      for (Index i = 0; i < static_cast<Index>(c.contacts.size()); ++i)
-        to.template segment<d>(c.contacts[i] * d) = r.template segment<d>(i * d);
-    }
   };
 
   /// Starts the OpenMP thread team before the sweeps: the runtime allocates
@@ -640,6 +679,9 @@ class Nsgs {
   /// product: on 3 contacts it was a fifth of the solve's error evaluations.
   double error_of(const Eigen::Ref<const Vector>& x) {
     const LocalProblemView& p = *problem_;
+    if constexpr (use_slots) {
+      if (settings_.ordering == ContactOrdering::Coloured && colouring_) return chunked_error_of(x);
+    }
     if ((x.array() == 0).all()) {
       work_ = p.q;
     } else {
@@ -647,6 +689,32 @@ class Nsgs {
       work_ += p.q;
     }
     return std::sqrt(natural_map_norms<Cone>(x, work_, p.mu).squared_sum) / scale_;
+  }
+
+  /// error_of() for the coloured ordering: block rows and natural maps in
+  /// parallel, chunk by chunk, the chunks' sums added in order (the same
+  /// error for any number of threads). With the sums and the copy above,
+  /// 2 threads' sweep went from 0.377 to 0.352 ms on a 10^4-contact pile
+  /// and from 6.1 to 5.1 ms at 10^5 (best runs, docs/results.md).
+  double chunked_error_of(const Eigen::Ref<const Vector>& x) {
+    const LocalProblemView& p = *problem_;
+    const Index nc = p.num_contacts();
+    [[maybe_unused]] const int threads = settings_.threads;
+#ifdef _OPENMP
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+#endif
+    for (Index k = 0; k < num_chunks(nc); ++k) {
+      double sum = 0;
+      for (Index a = k * kParallelChunk; a < std::min(nc, (k + 1) * kParallelChunk); ++a) {
+        work_.template segment<d>(a * d) = storage_.block_row_product(a, x) + p.q.template segment<d>(a * d);
+        sum += natural_map<Cone>(Vec(x.template segment<d>(a * d)), Vec(work_.template segment<d>(a * d)), p.mu[a])
+                   .squaredNorm();
+      }
+      error_chunks_[static_cast<std::size_t>(k)] = sum;
+    }
+    double squared_sum = 0;
+    for (Index k = 0; k < num_chunks(nc); ++k) squared_sum += error_chunks_[static_cast<std::size_t>(k)];
+    return std::sqrt(squared_sum) / scale_;
   }
 
   const SolverInfo& finish(Eigen::Ref<Vector> r, Eigen::Ref<Vector> u, Status status,
@@ -696,6 +764,8 @@ class Nsgs {
   std::optional<ContactColouring> colouring_;
   std::vector<Index> colour_order_;  // the colours in the order of the sweep
   std::vector<ContactUpdate, Eigen::aligned_allocator<ContactUpdate>> updates_;  // by colour slot
+  std::vector<ChunkSum> chunk_sums_;  // a sweep's sums, by chunk of kParallelChunk slots
+  std::vector<double> error_chunks_;  // squared natural maps, by chunk of kParallelChunk contacts
   std::minstd_rand rng_;  // small state: cheap to construct and seed
   Vector u_, work_, best_;
   Vector previous_, trial_;  ///< r before the sweep, and the extrapolated r
