@@ -704,13 +704,13 @@ class Nsgs {
 #pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
 #endif
     for (Index k = 0; k < num_chunks(nc); ++k) {
-      double sum = 0;
-      for (Index a = k * kParallelChunk; a < std::min(nc, (k + 1) * kParallelChunk); ++a) {
+      const Index begin = k * kParallelChunk, count = std::min(nc, begin + kParallelChunk) - begin;
+      for (Index a = begin; a < begin + count; ++a)
         work_.template segment<d>(a * d) = storage_.block_row_product(a, x) + p.q.template segment<d>(a * d);
-        sum += natural_map<Cone>(Vec(x.template segment<d>(a * d)), Vec(work_.template segment<d>(a * d)), p.mu[a])
-                   .squaredNorm();
-      }
-      error_chunks_[static_cast<std::size_t>(k)] = sum;
+      error_chunks_[static_cast<std::size_t>(k)] =
+          natural_map_norms<Cone>(x.segment(begin * d, count * d), work_.segment(begin * d, count * d),
+                                  p.mu.segment(begin, count))
+              .squared_sum;
     }
     double squared_sum = 0;
     for (Index k = 0; k < num_chunks(nc); ++k) squared_sum += error_chunks_[static_cast<std::size_t>(k)];
