@@ -244,3 +244,49 @@ def test_bridge_sweeps_stop_after_a_first_chunk_that_does_not_help(tmp_path):
     assert stages[bridge]["error"] >= best_before, res["message"]  # the scene's premise
     assert stages[bridge + 1]["stage"].startswith("newton"), res["message"]
     assert independent_error(local, sol) <= 1e-8
+
+
+def solved_sphere_pile(tmp_path, contacts, seed, tol):
+    """A generated sphere pile (FC/II) solved by `auto` to tol (converged,
+    stages well-formed, independent error within tol): the JSON's stages."""
+    local = tmp_path / "pile-local.hdf5"
+    g = run("generate", "sphere-pile", "--contacts", contacts, "--seed", seed, "--local-out", local)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(local, "--tol", tol, "--max-time", 60, out=sol)
+    assert code == 0 and res["status"] == "converged", res["message"]
+    check_stages(res)
+    assert independent_error(local, sol) <= tol
+    return res["stages"]
+
+
+def resumed_sweeps(stages):
+    """The index of the sweeps resumed after full Newton steps that did not
+    lower the error, checked against that premise."""
+    k = next(k for k, st in enumerate(stages) if st["why"].startswith("full Newton steps made no progress"))
+    assert stages[k]["stage"] == "nsgs"
+    assert stages[k - 1]["stage"] == "newton-full"
+    assert stages[k - 1]["error"] >= min(st["error"] for st in stages[:k - 1])  # no progress
+    return k
+
+
+def test_sweeps_resume_when_full_newton_steps_make_no_progress(tmp_path):
+    # a sphere pile of 10^4 contacts at 1e-4: the sweeps' rate predicts more
+    # than three Newton steps' cost, full steps stall on the pile (W
+    # singular), and the sweeps, resumed with the interior point's allowance,
+    # finish: no interior-point, line-search or proximal stage runs
+    stages = solved_sphere_pile(tmp_path, 10000, 5, 1e-4)
+    k = resumed_sweeps(stages)
+    assert all(st["stage"] == "nsgs" for st in stages[k:]), stages
+    assert stages[-1]["status"] == "converged"
+
+
+def test_resumed_sweeps_stop_at_a_plateau(tmp_path):
+    # a sphere pile of 1000 contacts at 1e-4: Gauss-Seidel stalls near
+    # 1.1e-4; the resumed sweeps stop when a chunk's rate is four times
+    # slower than the chunk's before, and the interior point finishes
+    stages = solved_sphere_pile(tmp_path, 1000, 3, 1e-4)
+    k = resumed_sweeps(stages)
+    nxt = next(j for j in range(k, len(stages)) if stages[j]["stage"] != "nsgs")
+    assert stages[nxt]["stage"] == "ipm" and "a plateau" in stages[nxt]["why"], stages
+    assert sum(st["iterations"] for st in stages[k:nxt]) <= 1000

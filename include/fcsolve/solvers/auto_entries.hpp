@@ -129,6 +129,13 @@ inline constexpr double kNewtonStepsWorthSweeping = 3;
 inline constexpr double kNewtonStepFixedSweeps = 25;
 /// Sweeps of the first continuation chunk (then 2x, 4x, ...).
 inline constexpr int kFirstChunk = 40;
+/// A chunk is at most this many times the sweeps its rate predicts (and
+/// at least kFirstChunk): where Gauss-Seidel reaches a plateau, the
+/// prediction from the chunk before is short, and a chunk sized by the
+/// doubling alone spends the allowance on it (a sphere pile of 1000 at
+/// 1e-4: 43 sweeps predicted, 640 then 1280 run that lowered the error by
+/// 8 %, docs/results.md, 2026-11-28).
+inline constexpr double kChunkOverPrediction = 2;
 /// Once the allowance is spent, the sweeps still get one last chunk of one
 /// Newton step's cost when their rate predicts tol within a quarter of
 /// that: the Newton stage that would replace them costs at least one step
@@ -138,6 +145,29 @@ inline constexpr int kFirstChunk = 40;
 /// tol (one step: 75), and the Newton stage then took 1.8 ms where the
 /// sweeps had taken 0.85 ms for their last 105 (docs/results.md).
 inline constexpr double kLastChunkShortfall = 4;
+/// After full Newton steps that did not lower the error, the sweeps get
+/// this many Newton steps' cost before the interior point runs. Where full
+/// steps stalled on the rigid corpus, nipm took 11 to 68 iterations when it
+/// converged (each at least one Newton step's factorisation) and did not
+/// converge on 3 problems of 13 (docs/results.md): the sweeps go on where
+/// they are predicted to beat an interior point of 20 iterations, the low
+/// end of that range. Measured on a sphere pile of 10^4 contacts at 1e-4
+/// (docs/results.md, 2026-11-28): the sweeps handed over predicting 776
+/// more (2340 were needed), and the plan spent 50 s in Newton, nipm and
+/// ppa stages that stalled where NSGS alone converged in 3.9 s; now 4.8 s,
+/// and at 1e-8, which no solver had reached in 60 s, 34 s. (The step's
+/// estimate from W's pattern is 7x what a full step measured there: the
+/// resumed sweeps may run some 30 s.)
+inline constexpr double kInteriorPointStepsWorthSweeping = 20;
+/// Those resumed sweeps stop when a chunk's rate (its log) is this many
+/// times slower than the chunk's before: the prediction that sized the
+/// chunk was as many times short, a plateau (the allowance above is seven
+/// times the first loop's, so a plateau would cost as much more). The
+/// first loop keeps its rule: its smaller allowance bounds what a plateau
+/// costs there. Measured: a sphere pile of 1000 at 1e-4 stopped at a
+/// plateau of 1.1e-4 after 390 sweeps instead of 2240; on the pile of 10^4
+/// the resumed chunks slowed by 2.5x, then 1.2x, and finished.
+inline constexpr double kPlateauSlowdown = 4;
 /// Newton: iterations without halving the best error that count as a stall.
 inline constexpr int kNewtonStallWindow = 25;
 /// The same for full Newton steps: they either contract fast or not at all.
@@ -537,34 +567,14 @@ class Plan : private StagedRun<LocalProblemView> {
     // (kNewtonStepsWorthSweeping; at most kSweepsWorthContinuing), where
     // Newton runs on W.
     double allowance = kSweepsWorthContinuing;
-    double step = std::numeric_limits<double>::infinity();  // a Newton step on W, in sweeps
+    sweep_rate_ = rate;
     if (why_newton.empty() && !native_.problem) {
-      step = newton_step_in_sweeps(p_);
-      allowance = std::min(allowance, kNewtonStepsWorthSweeping * step);
+      newton_step_ = newton_step_in_sweeps(p_);
+      allowance = std::min(allowance, kNewtonStepsWorthSweeping * newton_step_);
     }
-    int chunk = kFirstChunk;
-    bool last_chunk = false;
-    while (why_newton.empty()) {
-      const double predicted = rate < 1 ? std::log(tol() / best_error_) / std::log(rate)
-                                        : std::numeric_limits<double>::infinity();
-      std::string prediction = "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps";
-      int sweeps_now = std::min(chunk, int(allowance));
-      if (!(predicted <= allowance)) {
-        if (last_chunk || !std::isfinite(step) || !(kLastChunkShortfall * predicted <= step)) {
-          why_newton = prediction + " (allowance " + number(allowance) + "): sweeps too slow";
-          break;
-        }
-        last_chunk = true;  // allowance spent, tol near: one Newton step's sweeps
-        sweeps_now = int(std::ceil(step));
-        prediction += ", allowance spent, a Newton step costs " + number(step) + ": last chunk";
-      }
-      const double before = best_error_;
-      stage("nsgs", "nsgs", budget(0.5), std::min(sweeps_now, max_iter_left()), std::move(prediction));
+    if (why_newton.empty()) {
+      why_newton = continue_sweeps(allowance, "");
       if (done()) return finish();
-      const int sweeps = std::max(last_.info.iterations, 1);
-      allowance -= sweeps;
-      rate = before > 0 && best_error_ < before ? std::pow(best_error_ / before, 1.0 / sweeps) : 1;
-      chunk *= 2;
     }
     newton(why_newton);
     if (done()) return finish();
@@ -591,15 +601,73 @@ class Plan : private StagedRun<LocalProblemView> {
   /// stall"); where it stops short of tol, the line search goes on from
   /// the better of the two iterates.
   void newton(const std::string& why) {
+    const double before = best_error_;
     newton_stage("newton-full", budget(0.5), why + "; full steps", "none", kFullStepStallWindow);
     if (done()) return;
     if (last_status_ != Status::TimeLimit) {
-      interior_point(std::string("full Newton steps ") + to_string(last_status_));
+      std::string why_ipm = std::string("full Newton steps ") + to_string(last_status_);
+      // Full steps that did not lower the error at all leave the sweeps'
+      // rate as the best measure of progress. The interior point that
+      // would replace them costs more than the three steps' allowance the
+      // sweeps were held to (kNewtonStepsWorthSweeping): once, they go on
+      // while they predict tol within kInteriorPointStepsWorthSweeping
+      // steps.
+      if (!(best_error_ < before) && !sweeps_resumed_ && sweep_rate_ < 1 && std::isfinite(newton_step_)) {
+        sweeps_resumed_ = true;
+        why_ipm += ", " + continue_sweeps(kInteriorPointStepsWorthSweeping * newton_step_,
+                                          "full Newton steps made no progress; ", /*stop_on_slowdown=*/true);
+        if (done()) return;
+      }
+      interior_point(why_ipm);
       if (done()) return;
     }
     newton_stage("newton", budget(0.6), std::string("full steps ") + to_string(last_status_) + ": line search",
                  "goldstein-price", kNewtonStallWindow);
   }
+
+  /// Sweeps in doubling chunks (from sweep_chunk_) while the rate measured
+  /// on the last chunk (sweep_rate_) predicts tol within what is left of
+  /// `allowance` sweeps; once it is spent, one last chunk of a Newton
+  /// step's sweeps when the prediction is within a quarter of that
+  /// (kLastChunkShortfall). Returns why they stopped (empty when done()).
+  std::string continue_sweeps(double allowance, const std::string& reason, bool stop_on_slowdown = false) {
+    bool last_chunk = false;
+    for (bool first = true;; first = false) {
+      const double rate = sweep_rate_;
+      if (stop_on_slowdown && !first && rate_before_ < 1 &&
+          !(std::log(rate) <= std::log(rate_before_) / kPlateauSlowdown))
+        return "sweep rate " + number(rate_before_) + " then " + number(rate) + ": a plateau";
+      const double predicted = rate < 1 ? std::log(tol() / best_error_) / std::log(rate)
+                                        : std::numeric_limits<double>::infinity();
+      std::string prediction = "sweep rate " + number(rate) + " predicts " + number(predicted) + " sweeps";
+      if (first) prediction = reason + prediction;
+      // A chunk of at most twice the prediction: where the sweeps reach a
+      // plateau the next chunk's rate shows it, before the allowance is spent.
+      int sweeps_now = std::min(sweep_chunk_, int(allowance));
+      if (predicted <= allowance)
+        sweeps_now = std::min(sweeps_now, std::max(kFirstChunk, int(std::ceil(kChunkOverPrediction * predicted))));
+      else {
+        if (last_chunk || !std::isfinite(newton_step_) || !(kLastChunkShortfall * predicted <= newton_step_))
+          return prediction + " (allowance " + number(allowance) + "): sweeps too slow";
+        last_chunk = true;  // allowance spent, tol near: one Newton step's sweeps
+        sweeps_now = int(std::ceil(newton_step_));
+        prediction += ", allowance spent, a Newton step costs " + number(newton_step_) + ": last chunk";
+      }
+      const double before = best_error_;
+      stage("nsgs", "nsgs", budget(0.5), std::min(sweeps_now, max_iter_left()), std::move(prediction));
+      if (done()) return std::string();
+      const int sweeps = std::max(last_.info.iterations, 1);
+      allowance -= sweeps;
+      rate_before_ = sweep_rate_;
+      sweep_rate_ = before > 0 && best_error_ < before ? std::pow(best_error_ / before, 1.0 / sweeps) : 1;
+      if (sweep_chunk_ < (1 << 29)) sweep_chunk_ *= 2;
+    }
+  }
+  double sweep_rate_ = 1;              ///< per sweep, measured on the last chunk of sweeps
+  double rate_before_ = 1;             ///< the same on the chunk before
+  int sweep_chunk_ = kFirstChunk;      ///< sweeps of the next chunk
+  double newton_step_ = std::numeric_limits<double>::infinity();  ///< a Newton step on W, in sweeps
+  bool sweeps_resumed_ = false;
 
   /// Semismooth Newton on Alart-Curnier: on FC/II (`nsn-ac`), or on the
   /// FC/I problem it reduces when that is the cheaper form (`nsn-ac-global`).
