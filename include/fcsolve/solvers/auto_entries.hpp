@@ -378,6 +378,7 @@ class StagedRun {
     if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
       best_error_ = last_.info.error;
       best_ = last_.r;
+      ++best_version_;
       best_v_ = last_.v;
       best_lambda_ = last_.lambda;
     }
@@ -447,6 +448,7 @@ class StagedRun {
   Stopwatch clock_;
   Vector best_, best_v_, best_lambda_;
   double best_error_ = std::numeric_limits<double>::infinity();
+  int best_version_ = 0;  ///< counts the changes of best_
   SolveOutcome last_;
   Status last_status_ = Status::NotRun;
   int iterations_ = 0;
@@ -671,14 +673,28 @@ class Plan : private StagedRun<LocalProblemView> {
 
   /// Semismooth Newton on Alart-Curnier: on FC/II (`nsn-ac`), or on the
   /// FC/I problem it reduces when that is the cheaper form (`nsn-ac-global`).
+  /// A Newton stage is deterministic: from the iterate it last stalled
+  /// from (best_ unchanged since), with the same settings and no more
+  /// budget, it would stall again in the same steps, so it is skipped
+  /// (measured: a sphere pile of 3000 ran the line search twice from the
+  /// interior point's iterate, 1.2 s of 9.4, docs/results.md).
   void newton_stage(const char* label, double max_time, std::string why, const char* line_search,
                     int stall_window) {
+    int& stalled_from = std::strcmp(label, "newton-full") == 0 ? full_steps_stalled_from_ : line_search_stalled_from_;
+    if (stalled_from == best_version_) {
+      last_status_ = Status::Stalled;
+      return;
+    }
+    const int start = best_version_;
     const int max_iter = std::min(kNewtonMaxIter, max_iter_left());
     if (native_.problem)
       native_stage(label, "nsn-ac-global", max_time, max_iter, std::move(why), line_search, stall_window);
     else
       stage(label, "nsn-ac", max_time, max_iter, std::move(why), false, line_search, stall_window);
+    if (last_status_ == Status::Stalled) stalled_from = start;
   }
+  int full_steps_stalled_from_ = -1;   ///< best_version_ the full steps last stalled from
+  int line_search_stalled_from_ = -1;  ///< the same for the line search
 
   /// A stage on the FC/I problem (native_), from the best r and the v it
   /// determines (v = M^-1 (H r + f)); its r is judged on FC/II like every
