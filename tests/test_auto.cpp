@@ -168,6 +168,44 @@ TEST_CASE("auto: strongly coupled contacts, closed form, Newton takes over", "[a
   }
 }
 
+TEST_CASE("auto: the interior-point stage stops when it crawls, not on its early plateau", "[auto]") {
+  using namespace registry::auto_detail;
+  const auto iterations_until_stop = [](const std::vector<double>& errors) {
+    InteriorPointCrawl crawl;
+    crawl.start();
+    for (std::size_t k = 0; k < errors.size(); ++k)
+      if (crawl.crawls(errors[k])) return int(k) + 1;
+    return 0;
+  };
+  // path following done (1e-3 below the first iterate), then 0.05 % per
+  // iteration: stops once 12 iterations gained less than 1 %
+  std::vector<double> crawl = {1.0, 0.1, 1e-2, 1e-3};
+  for (int k = 0; k < 30; ++k) crawl.push_back(crawl.back() * 0.9995);
+  const int stop = iterations_until_stop(crawl);
+  CHECK(stop == 4 + kCrawlWindow);
+  // the same progress at the first iterate's level: the path following goes
+  // on (a heavy-on-light stack's early plateau), no stop
+  std::vector<double> plateau = {1.0};
+  for (int k = 0; k < 30; ++k) plateau.push_back(plateau.back() * 0.9995);
+  CHECK(iterations_until_stop(plateau) == 0);
+  // 2 % per iteration below the first iterate's 1 %: progress, no stop
+  std::vector<double> steady = {1.0, 1e-3};
+  for (int k = 0; k < 30; ++k) steady.push_back(steady.back() * 0.98);
+  CHECK(iterations_until_stop(steady) == 0);
+  // errors that go up count as no progress; a non-finite one is the
+  // engine's to handle and is not counted
+  std::vector<double> bouncing = {1.0, 1e-3};
+  for (int k = 0; k < 30; ++k) bouncing.push_back(k % 2 ? 2e-3 : std::numeric_limits<double>::quiet_NaN());
+  CHECK(iterations_until_stop(bouncing) == 2 + 2 * kCrawlWindow);
+  // start() forgets the previous run
+  InteriorPointCrawl reused;
+  for (double e : crawl) reused.crawls(e);
+  CHECK(reused.fired());
+  reused.start();
+  CHECK_FALSE(reused.fired());
+  CHECK_FALSE(reused.crawls(1e-9));
+}
+
 #ifdef FCSOLVE_WITH_KLU
 TEST_CASE("auto: the sweeps' allowance follows what a Newton step costs on W's pattern", "[auto]") {
   using namespace registry::auto_detail;

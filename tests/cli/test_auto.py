@@ -316,3 +316,26 @@ def test_resumed_sweeps_stop_at_a_plateau(tmp_path):
     nxt = next(j for j in range(k, len(stages)) if stages[j]["stage"] != "nsgs")
     assert stages[nxt]["stage"] == "ipm" and "a plateau" in stages[nxt]["why"], stages
     assert sum(st["iterations"] for st in stages[k:nxt]) <= 1000
+
+
+def test_interior_point_stage_stops_when_it_crawls(tmp_path):
+    # a heavy-on-light stack of 3000 contacts (mass ratio 1e4) at 1e-8: full
+    # Newton steps stall; the interior point's error falls to about 2e-5,
+    # then by under 1 % in 12 iterations: the stage stops there, well short
+    # of its 100 iterations, and Newton converges from its iterate
+    local = tmp_path / "stack-local.hdf5"
+    g = run("generate", "heavy-on-light", "--contacts", 3000, "--mass-ratio", 10000, "--seed", 37,
+            "--local-out", local)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(local, "--tol", 1e-8, "--max-time", 60, out=sol)
+    assert code == 0 and res["status"] == "converged", res["message"]
+    check_stages(res)
+    assert independent_error(local, sol) <= 1e-8
+    stages = res["stages"]
+    k = next(k for k, st in enumerate(stages) if st["stage"] == "ipm")
+    ipm = stages[k]
+    assert ipm["status"] == "stalled" and "stopped crawling" in ipm["why"], stages
+    assert ipm["iterations"] < 100, stages
+    assert ipm["error"] < min(st["error"] for st in stages[:k]), stages  # a better iterate
+    assert stages[k + 1]["stage"].startswith("newton") and stages[-1]["status"] == "converged", stages

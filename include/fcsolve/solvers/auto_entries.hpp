@@ -206,6 +206,48 @@ inline constexpr double kNativeLinearAlgebraFill = 8;
 inline constexpr int kStickingProbeIterations = 30;
 /// Iterations of the interior-point stage (see Plan::interior_point).
 inline constexpr int kInteriorPointIterations = 100;
+
+/// The interior-point stage ends when it crawls (InteriorPointCrawl): its
+/// best error lowered by less than kCrawlImprovement over kCrawlWindow
+/// iterations (the engine's own stall window counts any decrease), once
+/// the path following has lowered it to kCrawlPathDone times the first
+/// iterate's (a plateau before that is the path following at work). Measured (docs/results.md, 2026-11-28): a sphere pile of
+/// 3000 crawled from 4.84e-4 to 4.80e-4 in its last 45 of 100 iterations
+/// (1.6 s), and the proximal stage solved it afterwards anyway. The guard:
+/// on a heavy-on-light stack the error sits at 0.56 (its first iterate's
+/// 0.6) for 12 iterations while the path following goes on, then falls to
+/// 1.8e-5; an error test alone stopped that stage, and cost 3 s.
+inline constexpr int kCrawlWindow = 12;
+inline constexpr double kCrawlImprovement = 0.01;
+inline constexpr double kCrawlPathDone = 1e-2;
+
+/// Watches the errors an interior-point run reports (one per iteration,
+/// through the stage's callback) and says when it crawls.
+class InteriorPointCrawl {
+ public:
+  InteriorPointCrawl() { bests_.reserve(2 * kInteriorPointIterations); }
+  void start() {
+    bests_.clear();
+    fired_ = false;
+  }
+  bool fired() const { return fired_; }
+  /// The next iteration's error; true when the run should stop.
+  bool crawls(double error) {
+    if (!std::isfinite(error)) return false;  // the engine's own exit
+    if (bests_.empty()) first_ = error;
+    bests_.push_back(bests_.empty() ? error : std::min(bests_.back(), error));
+    const std::size_t n = bests_.size();
+    if (n <= std::size_t(kCrawlWindow)) return false;
+    const double best = bests_.back();
+    fired_ = best <= kCrawlPathDone * first_ && best > (1 - kCrawlImprovement) * bests_[n - 1 - kCrawlWindow];
+    return fired_;
+  }
+
+ private:
+  std::vector<double> bests_;  ///< best error after each iteration
+  double first_ = 0;
+  bool fired_ = false;
+};
 /// FC/I solved natively: iterations of the first stage, ADMM in (v, r)
 /// (`admm-global`: M + rho H H^T factorised once per rho, then each
 /// iteration one solve with that factor). On the generated elastic scenes
@@ -343,9 +385,11 @@ class StagedRun {
     req.common.max_time = max_time > 0 ? max_time : 1e-9;
     req.common.max_iter = std::max(max_iter, 1);
     req.common.record_history = history || req_.common.record_history;
-    if (req_.common.callback && !req.common.callback) {
+    if ((req_.common.callback || watch_crawl_) && !req.common.callback) {
       // The caller sees one run: iterations and seconds continue across stages.
       req.common.callback = [this](const IterationInfo& it) {
+        if (watch_crawl_ && crawl_.crawls(it.error)) return true;
+        if (!req_.common.callback) return false;
         IterationInfo whole = it;
         whole.iteration += iterations_;
         whole.seconds = clock_.seconds();
@@ -373,6 +417,12 @@ class StagedRun {
       const auto& h = last_.info.history;
       const bool with_start = !history_.empty() && int(h.size()) > last_.info.iterations;
       history_.insert(history_.end(), h.begin() + (with_start ? 1 : 0), h.end());
+    }
+    // Stopped by the crawl watch, not by the caller: the plan goes on.
+    if (last_status_ == Status::Stopped && watch_crawl_ && crawl_.fired()) {
+      last_status_ = last_.info.status = Status::Stalled;
+      why += "; stopped crawling (" + number(100 * kCrawlImprovement) + " % in " + std::to_string(kCrawlWindow) +
+             " iterations)";
     }
     if (last_status_ == Status::Stopped) stopped_ = true;
     if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
@@ -457,6 +507,10 @@ class StagedRun {
   std::vector<double> history_;
   std::vector<StageReport> stages_;
   std::vector<StageRequest> requests_;  ///< a few: one per entry configuration
+  /// Set around the interior-point stage (Plan::interior_point): its
+  /// request's callback feeds crawl_, which may stop it.
+  bool watch_crawl_ = false;
+  InteriorPointCrawl crawl_;
   double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
 
@@ -728,16 +782,20 @@ class Plan : private StagedRun<LocalProblemView> {
   /// instead cost those 10 s and more (measured, not kept). Frictionless
   /// contacts included (ipm/form_common.hpp: heavy-on-light with mu = 0,
   /// 52 -> 28 ms where the line search took over before); a share of the
-  /// budget so that the tail keeps the rest.
+  /// budget so that the tail keeps the rest. It ends early when it crawls
+  /// (InteriorPointCrawl): the stages after it go on from its best iterate.
   /// Runs at most once (a second run would start from the same centre).
   void interior_point(const std::string& why) {
     if (interior_point_ran_) return;
     interior_point_ran_ = true;
     const int max_iter = std::min(kInteriorPointIterations, max_iter_left());
+    watch_crawl_ = true;
+    crawl_.start();
     if (native_.problem)
       native_stage("ipm", "nipm", budget(0.3), max_iter, why + ": the interior point");
     else
       stage("ipm", "nipm", budget(0.3), max_iter, why + ": the interior point");
+    watch_crawl_ = false;
   }
   bool interior_point_ran_ = false;
   ReducedFrom native_;  ///< set when the Newton and IPM stages run on FC/I
