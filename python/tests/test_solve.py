@@ -412,3 +412,26 @@ def test_global_error_scale_is_computed_once_per_problem(solver):
         assert again.error == pytest.approx(fresh.error, rel=1e-12, abs=1e-300)
         assert again.error == pytest.approx(P.error(again.r, again.v), rel=1e-12, abs=1e-300)
         assert again.error == pytest.approx(reference_error(path, P, again.r, again.v), rel=1e-6, abs=1e-14)
+
+
+def test_auto_callback_sees_every_iteration_when_a_stage_stops_crawling(tmp_path):
+    """`auto` stops its interior-point stage through that stage's callback
+    when it crawls; the caller's callback still sees every iteration of
+    every stage, numbered 1..iterations, and the stop is not the caller's."""
+    from campaign_support import real_cli
+
+    cli = real_cli()
+    if cli is None:
+        pytest.skip("no built fcsolve CLI to generate the scene (FCSOLVE_CLI or build/fcsolve)")
+    path = tmp_path / "stack-local.hdf5"
+    g = subprocess.run([cli, "generate", "heavy-on-light", "--contacts", "3000", "--mass-ratio", "10000",
+                        "--seed", "37", "--local-out", str(path)], capture_output=True, text=True, timeout=120)
+    assert g.returncode == 0, g.stderr
+    P = fcsolve.load(path)
+    seen = []
+    res = fcsolve.solve(P, "auto", tol=1e-8, max_time=60, callback=lambda i, e, s: seen.append(i))
+    assert res.converged, res.message
+    ipm = [st for st in res.stages if st["stage"] == "ipm"]
+    assert ipm and "stopped crawling" in ipm[0]["why"], res.stages  # the scene's premise
+    assert seen == list(range(1, res.iterations + 1))
+    assert res.error == pytest.approx(reference_error(path, P, res.r), rel=1e-6, abs=1e-14)

@@ -387,13 +387,16 @@ class StagedRun {
     req.common.record_history = history || req_.common.record_history;
     if ((req_.common.callback || watch_crawl_) && !req.common.callback) {
       // The caller sees one run: iterations and seconds continue across stages.
+      // The caller's callback sees every iteration, the one that ends a
+      // crawling stage included; its stop is a stop of the whole run.
       req.common.callback = [this](const IterationInfo& it) {
-        if (watch_crawl_ && crawl_.crawls(it.error)) return true;
-        if (!req_.common.callback) return false;
-        IterationInfo whole = it;
-        whole.iteration += iterations_;
-        whole.seconds = clock_.seconds();
-        return req_.common.callback(whole);
+        if (req_.common.callback) {
+          IterationInfo whole = it;
+          whole.iteration += iterations_;
+          whole.seconds = clock_.seconds();
+          if (req_.common.callback(whole)) return true;
+        }
+        return watch_crawl_ && crawl_.crawls(it.error);
       };
     }
     req.r0 = best_;
