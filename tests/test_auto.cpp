@@ -206,6 +206,32 @@ TEST_CASE("auto: the interior-point stage stops when it crawls, not on its early
   CHECK_FALSE(reused.crawls(1e-9));
 }
 
+TEST_CASE("auto: the run's message is written whole when its first size guess is short", "[auto][report]") {
+  using namespace registry::auto_detail;
+  const std::string long_text(300, 'x');
+  MessageWriter m(1);  // every piece makes it grow
+  m("a", long_text, -1234567890123LL, 7, 0.000123, -4.56e-7, std::numeric_limits<double>::infinity());
+  m(", ", std::string("end"));
+  CHECK(std::move(m).take() == "a" + long_text + "-1234567890123" + "7" + "0.000123" + "-4.56e-07" + "null, end");
+
+  Features f;
+  f.nc = 2;
+  f.mu_min = 0.1;
+  f.mu_max = 0.5;
+  registry::StageReport s;
+  s.name = "nsgs";
+  s.solver = "nsgs";
+  s.seconds = 1.5e-6;
+  s.iterations = 3;
+  s.error = 2e-9;
+  s.status = "converged";
+  s.why = std::string(1000, 'w');  // far past the guess of 160 characters a stage
+  const std::string message = run_message(f, {s, s}, "a note");
+  const std::string stage = "{\"stage\": \"nsgs\", \"solver\": \"nsgs\", \"seconds\": 1.5e-06, \"iterations\": 3, "
+                            "\"error\": 2e-09, \"status\": \"converged\", \"why\": \"" + s.why + "\"}";
+  CHECK(message == "auto (nc=2 d=3 mu=[0.1,0.5]): stages [" + stage + ", " + stage + "]; a note");
+}
+
 #ifdef FCSOLVE_WITH_KLU
 TEST_CASE("auto: the sweeps' allowance follows what a Newton step costs on W's pattern", "[auto]") {
   using namespace registry::auto_detail;

@@ -42,6 +42,10 @@ TEST_CASE("short numbers are printf's %.3g", "[report]") {
                    99.96, 0.000999, 123.0, 120.0, 1.2e-7, -4.56e-7})
     CHECK(ours(x) == printf_3g(x));
   CHECK(ours(0.0) == "0");
+  // the longest forms fit in kShortNumberChars
+  for (double x : {-1.23e-308, -4.9e-324, -9.99e-100, -0.000123})
+    CHECK(ours(x).size() <= fcsolve::kShortNumberChars);
+  CHECK(ours(-1.23e-308) == "-1.23e-308");
   CHECK(ours(std::numeric_limits<double>::infinity()) == "null");
   CHECK(ours(std::numeric_limits<double>::quiet_NaN()) == "null");
 
@@ -54,6 +58,7 @@ TEST_CASE("short numbers are printf's %.3g", "[report]") {
     double x = mantissa(random) * std::pow(10.0, exponent(random));
     if (k % 2) x = -x;
     const std::string a = ours(x), b = printf_3g(x);
+    CHECK(a.size() <= fcsolve::kShortNumberChars);  // MessageWriter reserves no more
     if (a == b) continue;
     ++differ;
     INFO(x << ": " << a << " against " << b);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 namespace fcsolve {
@@ -29,21 +30,20 @@ inline double times_power_of_ten(double a, int k) {
 
 }  // namespace detail
 
-/// Appends x to out as "%.3g" writes it; "null" when x is not finite (the
-/// reports are JSON).
-inline void append_short_number(std::string& out, double x) {
+/// Characters write_short_number writes at most ("-d.dde-308").
+inline constexpr std::size_t kShortNumberChars = 10;
+
+/// Writes x at c as "%.3g" writes it, "null" when x is not finite (the
+/// reports are JSON); returns the end. At most kShortNumberChars.
+inline char* write_short_number(char* c, double x) {
   if (!std::isfinite(x)) {
-    out += "null";
-    return;
+    for (const char* t = "null"; *t; ++t) *c++ = *t;
+    return c;
   }
-  // written into a buffer, appended once: "-d.dde-308" at most
-  char buf[16];
-  char* c = buf;
   if (x == 0) {
     if (std::signbit(x)) *c++ = '-';
     *c++ = '0';
-    out.append(buf, std::size_t(c - buf));
-    return;
+    return c;
   }
   if (x < 0) *c++ = '-';
   const double a = std::fabs(x);
@@ -85,7 +85,13 @@ inline void append_short_number(std::string& out, double x) {
     for (int k = -1; k > e; --k) *c++ = '0';
     for (int k = 0; k < kept; ++k) *c++ = d[k];
   }
-  out.append(buf, std::size_t(c - buf));
+  return c;
+}
+
+/// Appends x to out as "%.3g" writes it; "null" when x is not finite.
+inline void append_short_number(std::string& out, double x) {
+  char buf[kShortNumberChars];
+  out.append(buf, std::size_t(write_short_number(buf, x) - buf));
 }
 
 }  // namespace fcsolve

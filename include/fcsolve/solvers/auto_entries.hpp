@@ -77,6 +77,7 @@
 #include <fcsolve/solvers/registry.hpp>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -211,9 +212,10 @@ inline constexpr int kInteriorPointIterations = 100;
 /// best error lowered by less than kCrawlImprovement over kCrawlWindow
 /// iterations (the engine's own stall window counts any decrease), once
 /// the path following has lowered it to kCrawlPathDone times the first
-/// iterate's (a plateau before that is the path following at work). Measured (docs/results.md, 2026-11-28): a sphere pile of
-/// 3000 crawled from 4.84e-4 to 4.80e-4 in its last 45 of 100 iterations
-/// (1.6 s), and the proximal stage solved it afterwards anyway. The guard:
+/// iterate's (a plateau before that is the path following at work).
+/// Measured (docs/results.md, 2026-11-28): a sphere pile of 3000 crawled
+/// from 4.84e-4 to 4.80e-4 in its last 45 of 100 iterations (1.6 s), and
+/// the proximal stage solved it afterwards anyway. The guard:
 /// on a heavy-on-light stack the error sits at 0.56 (its first iterate's
 /// 0.6) for 12 iterations while the path following goes on, then falls to
 /// 1.8e-5; an error test alone stopped that stage, and cost 3 s.
@@ -222,32 +224,39 @@ inline constexpr double kCrawlImprovement = 0.01;
 inline constexpr double kCrawlPathDone = 1e-2;
 
 /// Watches the errors an interior-point run reports (one per iteration,
-/// through the stage's callback) and says when it crawls.
+/// through the stage's callback) and says when it crawls. It keeps the
+/// best errors of the last kCrawlWindow + 1 iterations in a ring: it is a
+/// member of every run, and a run of one contact must not pay an
+/// allocation for it.
 class InteriorPointCrawl {
  public:
-  InteriorPointCrawl() { bests_.reserve(2 * kInteriorPointIterations); }
   void start() {
-    bests_.clear();
+    count_ = 0;
     fired_ = false;
   }
   bool fired() const { return fired_; }
   /// The next iteration's error; true when the run should stop.
   bool crawls(double error) {
     if (!std::isfinite(error)) return false;  // the engine's own exit
-    if (bests_.empty()) first_ = error;
-    bests_.push_back(bests_.empty() ? error : std::min(bests_.back(), error));
-    const std::size_t n = bests_.size();
-    if (n <= std::size_t(kCrawlWindow)) return false;
-    const double best = bests_.back();
-    fired_ = best <= kCrawlPathDone * first_ && best > (1 - kCrawlImprovement) * bests_[n - 1 - kCrawlWindow];
+    const double best = count_ == 0 ? error : std::min(bests_[(count_ - 1) % kRing], error);
+    if (count_ == 0) first_ = error;
+    bests_[count_ % kRing] = best;
+    ++count_;
+    if (count_ <= std::size_t(kCrawlWindow)) return false;
+    // the best error kCrawlWindow iterations ago
+    const double before = bests_[(count_ - 1 - kCrawlWindow) % kRing];
+    fired_ = best <= kCrawlPathDone * first_ && best > (1 - kCrawlImprovement) * before;
     return fired_;
   }
 
  private:
-  std::vector<double> bests_;  ///< best error after each iteration
+  static constexpr std::size_t kRing = kCrawlWindow + 1;
+  std::array<double, kRing> bests_{};  ///< best error after each of the last kRing iterations
+  std::size_t count_ = 0;              ///< iterations seen since start()
   double first_ = 0;
   bool fired_ = false;
 };
+
 /// FC/I solved natively: iterations of the first stage, ADMM in (v, r)
 /// (`admm-global`: M + rho H H^T factorised once per rho, then each
 /// iteration one solve with that factor). On the generated elastic scenes
@@ -315,29 +324,71 @@ inline std::string number(double x) {
   return out;
 }
 
+/// A message written in one buffer: each piece is copied at a cursor, the
+/// buffer grows only when the first guess of its size was short. On a run
+/// of one contact the report is a tenth of the solve, and appending its
+/// ~35 pieces to a std::string one by one (a capacity check and a call
+/// each) was most of that (callgrind, docs/results.md 2026-11-28).
+class MessageWriter {
+ public:
+  explicit MessageWriter(std::size_t capacity) : buf_(capacity, '\0') {}
+  template <class... Pieces>
+  void operator()(const Pieces&... pieces) {
+    (put(pieces), ...);
+  }
+  std::string take() && {
+    buf_.resize(used_);
+    return std::move(buf_);
+  }
+
+ private:
+  void put(const char* text) { put(text, std::strlen(text)); }
+  void put(const std::string& text) { put(text.data(), text.size()); }
+  void put(const char* text, std::size_t n) {
+    std::memcpy(room(n), text, n);
+    used_ += n;
+  }
+  void put(double x) {
+    char* c = room(kShortNumberChars);  // may move the buffer: before the end is taken
+    used_ += std::size_t(write_short_number(c, x) - c);
+  }
+  template <class Integer, class = std::enable_if_t<std::is_integral_v<Integer>>>
+  void put(Integer i) {
+    constexpr std::size_t kDigits = 24;
+    char* c = room(kDigits);
+    used_ += std::size_t(std::to_chars(c, c + kDigits, i).ptr - c);
+  }
+  /// Where the next n characters go.
+  char* room(std::size_t n) {
+    if (buf_.size() - used_ < n) buf_.resize(std::max(2 * buf_.size(), used_ + n));
+    return buf_.data() + used_;
+  }
+
+  std::string buf_;
+  std::size_t used_ = 0;
+};
+
 /// The message of a run: its features and every stage's report (a JSON
-/// object each). It is built on every run; on a run of a few contacts the
-/// temporaries of `a + b + ...` cost a tenth of the solve (measured),
-/// hence append().
+/// object each). It is built on every run, hence MessageWriter.
 inline std::string run_message(const Features& f, const std::vector<StageReport>& stages,
                                const std::string& note) {
-  std::string m;
-  m.reserve(96 + 192 * stages.size() + note.size());
-  append(m, "auto (nc=", f.nc, " d=", f.d, " mu=[", f.mu_min, ",", f.mu_max, "]");
-  if (f.normal_spread != 1) append(m, " W_NN spread=", f.normal_spread);
-  if (f.global)
-    append(m, " n=", f.n, " d*nc/n=", f.contact_ratio, " nnz(M^-1 H)/nnz(H)=", f.inverse_mass_fill);
-  if (f.reduced_fill > 0) append(m, " nnz(W)/nnz(H,M)=", f.reduced_fill);
-  m += "): stages [";
+  std::size_t guess = 160 + note.size();
+  for (const StageReport& s : stages) guess += 160 + s.name.size() + s.solver.size() + s.why.size();
+  MessageWriter m(guess);
+  m("auto (nc=", f.nc, " d=", f.d, " mu=[", f.mu_min, ",", f.mu_max, "]");
+  if (f.normal_spread != 1) m(" W_NN spread=", f.normal_spread);
+  if (f.global) m(" n=", f.n, " d*nc/n=", f.contact_ratio, " nnz(M^-1 H)/nnz(H)=", f.inverse_mass_fill);
+  if (f.reduced_fill > 0) m(" nnz(W)/nnz(H,M)=", f.reduced_fill);
+  m("): stages [");
   for (std::size_t k = 0; k < stages.size(); ++k) {
     const StageReport& s = stages[k];
-    append(m, k ? ", " : "", "{\"stage\": \"", s.name, "\", \"solver\": \"", s.solver,
-           "\", \"seconds\": ", s.seconds, ", \"iterations\": ", s.iterations, ", \"error\": ", s.error,
-           ", \"status\": \"", s.status, "\", \"why\": \"", s.why, "\"}");
+    m(k ? ", " : "", "{\"stage\": \"", s.name, "\", \"solver\": \"", s.solver, "\", \"seconds\": ", s.seconds,
+      ", \"iterations\": ", s.iterations, ", \"error\": ", s.error, ", \"status\": \"", s.status, "\", \"why\": \"",
+      s.why, "\"}");
   }
-  m += ']';
-  if (!note.empty()) append(m, "; ", note);
-  return m;
+  m("]");
+  if (!note.empty()) m("; ", note);
+  return std::move(m).take();
 }
 
 /// What every staged plan shares: the best iterate so far (judged by the
