@@ -18,9 +18,10 @@ unless --fcsolve-only.
 Solved and time are the campaign's: the recomputed FCLIB error <= tol, and
 the solver's own setup + solve seconds (`seconds`, floored at 1 us as in
 the report; --floor 0 compares the times as measured, which matters on
-problems of one contact, solved in half a microsecond). A problem `auto` misses counts at the run's time limit in the
-total (so a miss can only make the ratio worse); the ratio on the problems
-both solve is printed beside it.
+problems of one contact, solved in half a microsecond). A problem `auto`
+misses counts at the run's time limit in the total (so a miss can only
+make the ratio worse); the ratio on the problems both solve is printed
+beside it.
 
     /usr/bin/python3 bench/auto_targets.py DIR/results.csv \\
         --manifest /tmp/fcsolve-corpus/MANIFEST.csv

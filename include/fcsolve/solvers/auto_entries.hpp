@@ -299,31 +299,6 @@ inline Features local_features(const LocalProblemView& p) {
   return f;
 }
 
-/// Appends x as printf's "%.3g" writes it ("null" if not finite), without
-/// snprintf's exact conversion: the report is built on every run, and on a
-/// run of one contact its numbers cost more than the solve (measured).
-inline void append_piece(std::string& out, double x) { append_short_number(out, x); }
-template <class Integer, class = std::enable_if_t<std::is_integral_v<Integer>>>
-void append_piece(std::string& out, Integer i) {
-  char buf[24];
-  out.append(buf, std::to_chars(buf, buf + sizeof buf, i).ptr);
-}
-inline void append_piece(std::string& out, const char* text) { out += text; }
-inline void append_piece(std::string& out, const std::string& text) { out += text; }
-
-/// Appends text, integers and numbers (as "%.3g") to out, in one buffer:
-/// no temporaries of `a + b + ...`.
-template <class... Pieces>
-void append(std::string& out, const Pieces&... pieces) {
-  (append_piece(out, pieces), ...);
-}
-
-inline std::string number(double x) {
-  std::string out;
-  append_piece(out, x);
-  return out;
-}
-
 /// A message written in one buffer: each piece is copied at a cursor, the
 /// buffer grows only when the first guess of its size was short. On a run
 /// of one contact the report is a tenth of the solve, and appending its
@@ -367,6 +342,18 @@ class MessageWriter {
   std::string buf_;
   std::size_t used_ = 0;
 };
+
+/// Text, integers and numbers (numbers as printf's "%.3g", without
+/// snprintf's exact conversion: on a run of one contact its numbers cost
+/// more than the solve, measured) in one string.
+template <class... Pieces>
+std::string text(const Pieces&... pieces) {
+  MessageWriter m(64);
+  m(pieces...);
+  return std::move(m).take();
+}
+
+inline std::string number(double x) { return text(x); }
 
 /// The message of a run: its features and every stage's report (a JSON
 /// object each). It is built on every run, hence MessageWriter.
@@ -624,8 +611,7 @@ class Plan : private StagedRun<LocalProblemView> {
   SolveOutcome run() {
     if (best_error_ <= tol()) return finish("the starting point already meets tol");
     if (f_.nc <= kTinyContacts) {
-      std::string why;
-      append(why, "nc <= ", kTinyContacts, ": sweeps are cheapest");
+      std::string why = text("nc <= ", kTinyContacts, ": sweeps are cheapest");
       stage("nsgs", "nsgs", budget(0.5), std::min(kTinySweeps, max_iter_left()), std::move(why));
       if (done()) return finish();
       return robust_tail("nsgs did not reach tol");
