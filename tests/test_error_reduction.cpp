@@ -3,11 +3,13 @@
 // constraints, recovery of v and lambda).
 #include "test_support.hpp"
 
+#include <fcsolve/cone/tresca.hpp>
 #include <fcsolve/problem/error.hpp>
 #include <fcsolve/linalg/suitesparse_backend.hpp>
 #include <fcsolve/problem/reduction.hpp>
 
 #include <Eigen/Dense>
+#include <random>
 #include <catch2/catch.hpp>
 
 using namespace fcsolve;
@@ -64,6 +66,37 @@ TEST_CASE("error value matches the natural map formula", "[error]") {
   // q = 0: absolute error
   const LocalProblem z = one_contact(0.0, Eigen::Vector3d::Zero(), W);
   CHECK(local_error(z, Eigen::Vector3d(1, 0, 0)) == Approx(1.0));
+}
+
+TEST_CASE("zero_reaction_error_bound is below the error of r = 0, and tight on the boundary ray",
+          "[error]") {
+  // per contact: ||F^a(0)|| >= max(0, -q_N) / (1 + mu^2); random contacts,
+  // every cone the bound covers; equality when -(q + g(q)) projects onto
+  // the boundary ray (q_T large against -q_N)
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> uni(-2, 2), pos(0, 2);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double mu = trial % 7 == 0 ? 0.0 : pos(gen);
+    const Eigen::Vector3d q(uni(gen), uni(gen), uni(gen));
+    const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+    const double F3 = natural_map<Coulomb3D>(zero, q, mu).norm();
+    const double b3 = zero_reaction_error_bound<Coulomb3D>(q, Vector::Constant(1, mu));
+    CHECK(b3 <= F3 * (1 + 1e-14));
+    CHECK(b3 == Approx(std::max(0.0, -q[0]) / (1 + mu * mu)).epsilon(1e-15));
+    const Eigen::Vector2d q2 = q.head<2>();
+    CHECK(zero_reaction_error_bound<Coulomb2D>(q2, Vector::Constant(1, mu)) <=
+          natural_map<Coulomb2D>(Eigen::Vector2d::Zero(), q2, mu).norm() * (1 + 1e-14));
+    const Eigen::Matrix<double, 1, 1> q1(q[0]);
+    CHECK(zero_reaction_error_bound<Frictionless>(q1, Vector::Constant(1, mu)) <=
+          natural_map<Frictionless>(Eigen::Matrix<double, 1, 1>::Zero(), q1, mu).norm() * (1 + 1e-14));
+  }
+  // the boundary ray: q = (-1, 10, 0), mu = 0.5: F(0) = -(1 / 1.25) (1, -0.5, 0)
+  const Eigen::Vector3d q(-1, 10, 0);
+  const double F = natural_map<Coulomb3D>(Eigen::Vector3d::Zero(), q, 0.5)[0];
+  CHECK(-F == Approx(1 / 1.25));
+  CHECK(zero_reaction_error_bound<Coulomb3D>(q, Vector::Constant(1, 0.5)) == Approx(-F));
+  // a cone the bound does not cover gets 0
+  CHECK(zero_reaction_error_bound<TrescaCylinder<3>>(q, Vector::Constant(1, 0.5)) == 0);
 }
 
 TEST_CASE("LocalErrorEvaluator agrees with local_error", "[error]") {

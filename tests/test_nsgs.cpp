@@ -293,6 +293,17 @@ TEST_CASE("nsgs budgets, callback and history", "[nsgs]") {
     CHECK(nsgs.info().iterations == 3);
     CHECK(nsgs.info().error == Approx(local_error(p, r)).epsilon(1e-9));
   }
+  SECTION("a cold start stopped after one sweep: the better of r = 0 and the sweep") {
+    // r = 0 is not evaluated up front when it cannot meet tol (Nsgs's
+    // start_error); a failed solve must still weigh it
+    nsgs.settings().max_iter = 1;
+    nsgs.solve(r, u);
+    CHECK(nsgs.info().status == Status::MaxIterations);
+    const double zero_error = local_error(p, Vector::Zero(p.size()));
+    CHECK(nsgs.info().error == Approx(local_error(p, r)).epsilon(1e-12));
+    CHECK(nsgs.info().error <= zero_error);
+    CHECK(zero_reaction_error_bound<Coulomb3D>(p.q, p.mu) / p.q.norm() <= zero_error);
+  }
   SECTION("time budget") {
     nsgs.settings().max_time = 1e-9;
     nsgs.solve(r, u);
@@ -319,6 +330,19 @@ TEST_CASE("nsgs budgets, callback and history", "[nsgs]") {
     CHECK(seen.back().iteration == 5);
     CHECK(nsgs.info().history.size() == 5);
     CHECK(seen.front().error > 0);
+  }
+  SECTION("a cold start that is a solution needs no sweep") {
+    // every contact separating (q_N > 0): r = 0 solves the problem exactly
+    LocalProblem lifted = p;
+    for (Index a = 0; a < lifted.num_contacts(); ++a) lifted.q[3 * a] = 1 + std::abs(lifted.q[3 * a]);
+    Nsgs3<BlockSparseStorage<3>> apart;
+    apart.compute(lifted);
+    Vector r0 = Vector::Zero(lifted.size()), u0(lifted.size());
+    apart.solve(r0, u0);
+    CHECK(apart.info().converged());
+    CHECK(apart.info().iterations == 0);
+    CHECK(apart.info().error == 0);
+    CHECK(r0.isZero(0));
   }
   SECTION("a solution as warm start needs no sweep") {
     nsgs.settings().max_iter = 100000;

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace fcsolve {
 
@@ -65,6 +66,31 @@ inline NaturalMapNorms natural_map_norms(int d, const Eigen::Ref<const Vector>& 
   return dispatch_cone(d, [&](auto cone) {
     return natural_map_norms<decltype(cone)>(r, u, mu);
   });
+}
+
+/// A lower bound on ||F_nat(0)||, the FCLIB error of r = 0 times ||q||, for
+/// the Coulomb cones (and the frictionless one); 0 for other cones. At r = 0,
+/// u = q and F^a(0) = -P_K(z), z = -(q^a + g(q^a)) = (-q_N - mu ||q_T||,
+/// -q_T). Where q_N^a < 0, z is not in the polar cone (that needs q_N >= 0),
+/// and P_K(z)'s normal part is at least -q_N / (1 + mu^2): exactly that on
+/// the boundary ray (Coulomb3D::project: (z_N + mu ||z_T||) / (1 + mu^2)),
+/// and z_N >= ||z_T|| / mu >= it inside K (||q_T|| <= mu z_N there). So
+/// ||F^a(0)|| >= max(0, -q_N^a) / (1 + mu_a^2).
+template <class Cone>
+double zero_reaction_error_bound(const Eigen::Ref<const Vector>& q, const Eigen::Ref<const Vector>& mu) {
+  using Scalar = typename Cone::Scalar;
+  constexpr bool coulomb = std::is_same_v<Cone, Coulomb3DTpl<Scalar>> ||
+                           std::is_same_v<Cone, Coulomb2DTpl<Scalar>> ||
+                           std::is_same_v<Cone, FrictionlessTpl<Scalar>>;
+  if constexpr (!coulomb) {
+    return 0;
+  } else {
+    constexpr int d = Cone::dim;
+    double bound = 0;
+    for (Index a = 0; a < mu.size(); ++a)
+      bound = std::max(bound, -q[a * d] / (1 + mu[a] * mu[a]));
+    return bound;
+  }
 }
 
 /// Divisor of the FCLIB relative error: ||q||, or 1 when q = 0.
