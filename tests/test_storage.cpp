@@ -91,6 +91,29 @@ TEST_CASE("block-sparse storage keeps missing diagonal blocks as zero", "[storag
   Vector x = Vector::LinSpaced(6, 1, 6);
   CHECK(S.block_row_product(0, x)[0] == Approx(2.0 * 5));
   CHECK(S.block_row_product(1, x)[2] == Approx(-3.0 * 2));
+  CHECK((S.off_diagonal_row_product(0, x) - S.block_row_product(0, x)).norm() == 0);
+  CHECK((S.off_diagonal_row_product(1, x) - S.block_row_product(1, x)).norm() == 0);
+}
+
+TEST_CASE("block-sparse off-diagonal row products skip the diagonal wherever it sits", "[storage]") {
+  // 3 contacts: row 0 without its diagonal block, row 1 with it between two
+  // others, row 2 with the diagonal only
+  SparseMatrix W(9, 9);
+  W.insert(0, 4) = 2.0;
+  W.insert(1, 8) = 1.5;
+  W.insert(3, 0) = -1.0;
+  W.insert(4, 4) = 7.0;
+  W.insert(5, 3) = 0.25;
+  W.insert(3, 7) = 4.0;
+  W.insert(8, 8) = 9.0;
+  W.makeCompressed();
+  const BlockSparseStorage<3> S(W);
+  const DenseMatrix Wd = DenseMatrix(W);
+  const Vector x = Vector::LinSpaced(9, 1, 9);
+  for (Index a = 0; a < 3; ++a) {
+    const Vector off = (Wd.middleRows(3 * a, 3) * x - Wd.block(3 * a, 3 * a, 3, 3) * x.segment(3 * a, 3)).eval();
+    CHECK((S.off_diagonal_row_product(a, x) - off).norm() == 0);
+  }
 }
 
 TEST_CASE("storages work for 2D and frictionless block sizes", "[storage]") {

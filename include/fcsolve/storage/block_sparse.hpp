@@ -30,6 +30,7 @@ class BlockSparseStorage {
     column_.clear();
     blocks_.clear();
     diagonal_.assign(static_cast<std::size_t>(nb), Block::Zero());
+    diagonal_at_.assign(static_cast<std::size_t>(nb), 0);
     std::vector<Index> slot(static_cast<std::size_t>(nb), -1);  // block column -> position in row
     for (Index a = 0; a < nb; ++a) {
       const Index first = static_cast<Index>(blocks_.size());
@@ -45,8 +46,12 @@ class BlockSparseStorage {
           blocks_[slot[b]](k, it.col() - b * D) = it.value();
         }
       }
+      diagonal_at_[static_cast<std::size_t>(a)] = static_cast<Index>(blocks_.size());  // none stored
       for (Index p = first; p < static_cast<Index>(blocks_.size()); ++p) {
-        if (column_[p] == a) diagonal_[a] = blocks_[p];
+        if (column_[p] == a) {
+          diagonal_[a] = blocks_[p];
+          diagonal_at_[static_cast<std::size_t>(a)] = p;
+        }
         slot[column_[p]] = -1;
       }
       row_start_[a + 1] = static_cast<Index>(blocks_.size());
@@ -67,10 +72,17 @@ class BlockSparseStorage {
   }
   /// (W x)^a - W^{aa} x^a over the stored blocks of row a (a Gauss-Seidel
   /// visit's right-hand side).
+  /// Two loops around the diagonal's position instead of a test of every
+  /// block's column: the same sum in the same order, without a branch per
+  /// block whose outcome moves from row to row (sphere pile of 10^4
+  /// contacts: a sweep 12-16% faster, docs/results.md).
   BlockVector off_diagonal_row_product(Index a, const Eigen::Ref<const VectorType>& x) const {
     BlockVector acc = BlockVector::Zero();
-    for (Index p = row_start_[a]; p < row_start_[a + 1]; ++p)
-      if (column_[p] != a) acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
+    const Index diagonal = diagonal_at_[static_cast<std::size_t>(a)];
+    for (Index p = row_start_[a]; p < diagonal; ++p)
+      acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
+    for (Index p = diagonal + 1; p < row_start_[a + 1]; ++p)
+      acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
     return acc;
   }
   void multiply(const Eigen::Ref<const VectorType>& x, Eigen::Ref<VectorType> y) const {
@@ -92,6 +104,7 @@ class BlockSparseStorage {
  private:
   Index size_ = 0;
   std::vector<Index> row_start_, column_;
+  std::vector<Index> diagonal_at_;  ///< position of row a's diagonal block, or its row's end if none
   std::vector<Block, Eigen::aligned_allocator<Block>> blocks_, diagonal_;
 };
 
