@@ -98,7 +98,7 @@ struct SlidingEquation {
       const double step2 = 4 * NN * h;  // dth^2 / (1 + dth^2 / 4)
       if (step2 <= tol * tol) return true;
       // K f'^2 <= k: stop when k |dth|^3 <= rounding f'^2 (squared: no root)
-      const double adf = std::abs(df), k = 0.25 * m2 * m2 + m3 * adf / 6 + df * df / 12;
+      const double adf = std::abs(df), k = 0.25 * m2 * m2 + m3 * adf * (1.0 / 6) + df * df * (1.0 / 12);
       if (k * k * step2 * step2 * step2 <= rounding * rounding * adf * adf * adf * adf) return true;
     }
     return false;
