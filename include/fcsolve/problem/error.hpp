@@ -74,8 +74,8 @@ inline NaturalMapNorms natural_map_norms(int d, const Eigen::Ref<const Vector>& 
 /// -q_T). Where q_N^a < 0, z is not in the polar cone (that needs q_N >= 0),
 /// and P_K(z)'s normal part is at least -q_N / (1 + mu^2): exactly that on
 /// the boundary ray (Coulomb3D::project: (z_N + mu ||z_T||) / (1 + mu^2)),
-/// and z_N >= ||z_T|| / mu >= it inside K (||q_T|| <= mu z_N there). So
-/// ||F^a(0)|| >= max(0, -q_N^a) / (1 + mu_a^2).
+/// and inside K, where ||q_T|| <= mu z_N, z_N = -q_N - mu ||q_T|| >= -q_N -
+/// mu^2 z_N. So ||F^a(0)|| >= max(0, -q_N^a) / (1 + mu_a^2).
 template <class Cone>
 double zero_reaction_error_bound(const Eigen::Ref<const Vector>& q, const Eigen::Ref<const Vector>& mu) {
   using Scalar = typename Cone::Scalar;
