@@ -23,6 +23,7 @@
 // problem) only when that iteration fails.
 #pragma once
 
+#include <fcsolve/core/compiler.hpp>
 #include <fcsolve/local/one_contact.hpp>
 #include <fcsolve/local/sliding_equation.hpp>
 
@@ -109,22 +110,33 @@ struct Enumerative {
     return out;
   }
 
-  static LocalResult solve(const Data& d, const Vec& q, Vec& r, const Settings& s) {
-    LocalResult res;
-    res.iterations = 1;
-    if (s.newton_first && fast_solve(d, q, r, s, res)) return res;
+  /// Both paths return only the branch taken (Unknown: none), and the
+  /// result is built once from it: when the fast path's LocalResult and the
+  /// enumeration's met at one return, GCC assembled it on the stack by two
+  /// narrow stores and read it back by one wide load, a store-forwarding
+  /// stall that perf put at 13-20 % of a local solve (bench_nsgs
+  /// nsgs-small/cube-3, a sphere pile of 10^4 contacts).
+  FCSOLVE_ALWAYS_INLINE static LocalResult solve(const Data& d, const Vec& q, Vec& r, const Settings& s) {
+    ContactCase kind = s.newton_first ? fast_solve(d, q, r, s) : ContactCase::Unknown;
+    if (kind == ContactCase::Unknown) kind = solve_by_enumeration(d, q, r, s);
+    return LocalResult{1, kind != ContactCase::Unknown, kind};
+  }
+
+ private:
+  /// Every solution (enumerate()), then the one closest to the warm start r;
+  /// Unknown (r untouched) when there is none. Out of line: it is the rare
+  /// path, and inlined its size kept the fast path out of the sweep.
+  FCSOLVE_NOINLINE static ContactCase solve_by_enumeration(const Data& d, const Vec& q, Vec& r,
+                                                           const Settings& s) {
     const Solutions sol = enumerate(d, q, s);
-    if (sol.count == 0) return res;  // keep the warm start, converged = false
+    if (sol.count == 0) return ContactCase::Unknown;
     int best = 0;
     for (int k = 1; k < sol.count; ++k)
       if ((sol.r[k] - r).norm() < (sol.r[best] - r).norm()) best = k;
     r = sol.r[best];
-    res.converged = true;
-    res.kind = sol.kind[best];
-    return res;
+    return sol.kind[best];
   }
 
- private:
   /// r = (max(0, -q_N / W_NN), 0): the solution family when mu = 0.
   static Vec normal_only(const Data& d, const Vec& q) {
     Vec r = Vec::Zero();
@@ -132,15 +144,12 @@ struct Enumerative {
     return r;
   }
 
-  /// Take-off, stick, then Halley on the sliding direction; true if r now
-  /// holds a verified solution.
-  static bool fast_solve(const Data& d, const Vec& q, Vec& r, const Settings& s,
-                         LocalResult& res) {
-    res.converged = true;
+  /// Take-off, stick, then Halley on the sliding direction; the branch whose
+  /// verified solution r now holds, or Unknown (r untouched).
+  FCSOLVE_ALWAYS_INLINE static ContactCase fast_solve(const Data& d, const Vec& q, Vec& r, const Settings& s) {
     if (OneContact<Cone>::takes_off(q)) {
       r.setZero();
-      res.kind = ContactCase::TakeOff;
-      return true;
+      return ContactCase::TakeOff;
     }
     if (d.invertible) {
       // -(W^-1 q), not (-W^-1) q: the negated matrix made Eigen call its
@@ -148,16 +157,13 @@ struct Enumerative {
       const Vec stick = -(d.W_inv * q);
       if (Cone::contains(stick, d.mu)) {
         r = stick;
-        res.kind = ContactCase::Stick;
-        return true;
+        return ContactCase::Stick;
       }
-      if constexpr (dim == 1) return false;
       if constexpr (dim == 3) {
-        if (d.mu > 0 && slide_by_direction(d, q, stick, s, r, res)) return true;
+        if (d.mu > 0 && slide_by_direction(d, q, stick, s, r)) return ContactCase::Slide;
       }
     }
-    res.converged = false;
-    return false;
+    return ContactCase::Unknown;
   }
 
   /// 3D sliding by Halley's method on the direction, started from the warm
@@ -170,8 +176,7 @@ struct Enumerative {
   /// (callgrind, bench_nsgs nsgs-small/cube-4: one fallback a solve was a
   /// quarter of it).
   template <int D = dim, std::enable_if_t<D == 3, int> = 0>
-  static bool slide_by_direction(const Data& d, const Vec& q, const Vec& stick, const Settings& s,
-                           Vec& r, LocalResult& res) {
+  static bool slide_by_direction(const Data& d, const Vec& q, const Vec& stick, const Settings& s, Vec& r) {
     using Vec2 = SlidingEquation::Vec2;
     Vec2 t(-r[1], -r[2]);
     if (!(r[0] > 0) || t.squaredNorm() == 0) t = Vec2(-stick[1], -stick[2]);
@@ -180,10 +185,7 @@ struct Enumerative {
     t = norm > 0 ? Vec2(t / norm) : Vec2(1, 0);
     const SlidingEquation f(d.W, q, d.mu);
     for (int run = 0; run < 2; ++run) {  // one call site: the compiler inlines it
-      if (slide_from(f, d, q, s, t, r)) {
-        res.kind = ContactCase::Slide;
-        return true;
-      }
+      if (slide_from(f, d, q, s, t, r)) return true;
       t = -t;  // t: where the first run ended
     }
     return false;

@@ -318,7 +318,7 @@ class Nsgs {
     Vec r_new = r_old;
     const local::LocalResult lr = LocalSolver::solve(data[a], qhat, r_new, s.local);
     if (!lr.converged) ++out.failures;
-    if (!r_new.allFinite()) {  // keep the old value, count it as a failure
+    if (!local::OneContact<Cone>::is_finite(r_new)) {  // keep the old value, count it as a failure
       ++out.failures;
       return out;
     }
