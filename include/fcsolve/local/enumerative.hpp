@@ -152,9 +152,8 @@ struct Enumerative {
       return ContactCase::TakeOff;
     }
     if (d.invertible) {
-      // -(W^-1 q), not (-W^-1) q: the negated matrix made Eigen call its
-      // generic product out of line (1.3% of a 3-contact solve, perf)
-      const Vec stick = -(d.W_inv * q);
+      // OneContact::product: Eigen's went out of line in large translation units
+      const Vec stick = -OneContact<Cone>::product(d.W_inv, q);
       if (Cone::contains(stick, d.mu)) {
         r = stick;
         return ContactCase::Stick;

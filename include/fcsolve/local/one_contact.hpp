@@ -17,7 +17,9 @@
 
 #include <fcsolve/cone/cones.hpp>
 #include <fcsolve/cone/cone_types.hpp>
+#include <fcsolve/core/compiler.hpp>
 #include <fcsolve/core/enum_names.hpp>
+#include <fcsolve/core/small_product.hpp>
 #include <fcsolve/problem/error.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -64,6 +66,12 @@ struct OneContact {
   /// the FCLIB error (problem/error.hpp).
   static double residual(const Mat& W, const Vec& q, double mu, const Vec& r) {
     return natural_map<Cone>(r, velocity(W, q, r), mu).norm();
+  }
+  /// A x written out (core/small_product.hpp: inlines anywhere, Eigen's bits).
+  FCSOLVE_ALWAYS_INLINE static Vec product(const Mat& A, const Vec& x) {
+    Vec y;
+    for (int i = 0; i < dim; ++i) y[i] = product_row(A, i, x, 0);
+    return y;
   }
   /// Every entry finite. Eigen's allFinite() for a contact's vector went
   /// out of line in large translation units, 4 % of an NSGS sweep (perf,

@@ -4,6 +4,8 @@
 // touches only the blocks of that row, without allocation.
 #pragma once
 
+#include <fcsolve/core/compiler.hpp>
+#include <fcsolve/core/small_product.hpp>
 #include <fcsolve/storage/storage_types.hpp>
 
 #include <vector>
@@ -76,13 +78,26 @@ class BlockSparseStorage {
   /// block's column: the same sum in the same order, without a branch per
   /// block whose outcome moves from row to row (sphere pile of 10^4
   /// contacts: a sweep 12-16% faster, docs/results.md).
-  BlockVector off_diagonal_row_product(Index a, const Eigen::Ref<const VectorType>& x) const {
-    BlockVector acc = BlockVector::Zero();
+  ///
+  /// Written out in scalars, inlined, templated on x (the sweep passes a
+  /// Ref<Vector>). Through Eigen's product and out of line, a visit built a
+  /// Ref<const Vector> for the call (a constructor call, a free() of its
+  /// empty copy), kept the sum in the returned vector's memory (a store and
+  /// a reload a block) and was read back through a store-forwarding stall:
+  /// a fifth of a sweep on the pile (perf); inlined through Eigen, the
+  /// block products went out of line in a large translation unit. Each
+  /// block's entries are summed as Eigen's product sums them, then added
+  /// (product_row(), core/small_product.hpp): the same bits.
+  template <class XVector>
+  FCSOLVE_ALWAYS_INLINE BlockVector off_diagonal_row_product(Index a, const Eigen::MatrixBase<XVector>& x) const {
+    Scalar sum[D] = {};
     const Index diagonal = diagonal_at_[static_cast<std::size_t>(a)];
     for (Index p = row_start_[a]; p < diagonal; ++p)
-      acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
+      for (int i = 0; i < D; ++i) sum[i] += product_row(blocks_[p], i, x, column_[p] * D);
     for (Index p = diagonal + 1; p < row_start_[a + 1]; ++p)
-      acc.noalias() += blocks_[p] * x.template segment<D>(column_[p] * D);
+      for (int i = 0; i < D; ++i) sum[i] += product_row(blocks_[p], i, x, column_[p] * D);
+    BlockVector acc;
+    for (int i = 0; i < D; ++i) acc[i] = sum[i];
     return acc;
   }
   void multiply(const Eigen::Ref<const VectorType>& x, Eigen::Ref<VectorType> y) const {
