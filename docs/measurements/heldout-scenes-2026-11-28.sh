@@ -1,0 +1,35 @@
+#!/bin/bash
+# Held-out scenes: `fcsolve generate` with seeds and parameter sets never
+# used for tuning (seeds 101-116 and 201-210; the corpus of scripts/corpus.sh
+# uses seeds 1-60), each solved by `fcsolve solve` (auto, tol 1e-8,
+# --max-time 20) as FC/II (-local) and FC/I, and the returned solution's
+# error recomputed by ../shared/tools/fcref.py.
+#   bash docs/measurements/heldout-scenes-2026-11-28.sh [FCSOLVE] [OUTDIR]
+# Columns: file, exit code, status, solver, iterations, error, seconds | fcref.
+set -u
+B=${1:-build/fcsolve}
+OUT=${2:-/tmp/fcsolve-heldout}
+FCREF=${FCREF:-$(dirname "$0")/../../../shared/tools/fcref.py}
+mkdir -p "$OUT"
+# scene contacts mu mass-ratio penetration-correction seed
+SPECS=(
+  "sphere-pile 50 0.5 1 0 101" "sphere-pile 400 1.5 1 0.2 102" "box-stack 20 0.3 1 0 103"
+  "box-stack 200 2.0 1 0.1 104" "wall 100 0.8 1 0 105" "wall 800 0.2 1 0.2 106" "tower 60 1.0 1 0 107"
+  "tower 500 2.0 1 0 108" "heavy-on-light 16 0.5 10000 0 109" "heavy-on-light 120 0.9 1000 0.2 110"
+  "fem-block 100 0.5 1 0 111" "fem-block 400 1.2 1 0 112" "fem-two-bodies 100 0.4 1 0 113"
+  "fem-two-bodies 300 0.0 1 0 114" "sphere-pile 2000 0.0 1 0 115" "box-stack 8 0.1 100 0 116"
+  "wall 200 0.2 1 0.2 201" "wall 800 0.2 1 0.05 202" "wall 3000 0.5 1 0 203" "tower 2000 2.0 1 0.2 204"
+  "heavy-on-light 300 1.0 10000 0.1 205" "box-stack 1000 0.6 100 0 206" "box-stack 50 2.0 10000 0.2 207"
+  "sphere-pile 5000 0.3 1 0.1 208" "fem-block 1000 0.3 1 0 209" "fem-two-bodies 1000 1.0 1 0 210")
+for spec in "${SPECS[@]}"; do
+  set -- $spec
+  base="$OUT/$1-$2-s$6"
+  "$B" generate "$1" --contacts "$2" --mu "$3" --mass-ratio "$4" --penetration-correction "$5" --seed "$6" \
+    --out "$base.hdf5" --local-out "$base-local.hdf5" > /dev/null 2>&1 || { echo "generate failed: $spec"; continue; }
+  for p in "$base-local.hdf5" "$base.hdf5"; do
+    out=$(timeout 60 "$B" solve "$p" --tol 1e-8 --max-time 20 --json --out "${p%.hdf5}-sol.hdf5" 2>&1); rc=$?
+    st=$(echo "$out" | python3 -c "import sys, json; d = json.load(sys.stdin); print(d['status'], d['solver'], d['iterations'], '%.2e' % d['error'], '%.3f' % d['seconds'])" 2>/dev/null)
+    ref=$(OPENBLAS_NUM_THREADS=1 /usr/bin/python3 "$FCREF" "$p" "${p%.hdf5}-sol.hdf5" 2>&1 | tail -1)
+    echo "$(basename "$p") rc=$rc $st | fcref: $ref"
+  done
+done
