@@ -7,9 +7,10 @@
 #   bash docs/measurements/heldout-scenes-2026-11-28.sh [FCSOLVE] [OUTDIR]
 # Columns: file, exit code, status, solver, iterations, error, seconds | fcref.
 set -u
-B=${1:-build/fcsolve}
+ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
+FCREF=${FCREF:-$ROOT/../shared/tools/fcref.py}  # beside the checkout, as in CI
+B=${1:-$ROOT/build/fcsolve}
 OUT=${2:-/tmp/fcsolve-heldout}
-FCREF=${FCREF:-$(dirname "$0")/../../../shared/tools/fcref.py}
 mkdir -p "$OUT"
 # scene contacts mu mass-ratio penetration-correction seed
 SPECS=(
@@ -29,7 +30,11 @@ for spec in "${SPECS[@]}"; do
   for p in "$base-local.hdf5" "$base.hdf5"; do
     out=$(timeout 60 "$B" solve "$p" --tol 1e-8 --max-time 20 --json --out "${p%.hdf5}-sol.hdf5" 2>&1); rc=$?
     st=$(echo "$out" | python3 -c "import sys, json; d = json.load(sys.stdin); print(d['status'], d['solver'], d['iterations'], '%.2e' % d['error'], '%.3f' % d['seconds'])" 2>/dev/null)
-    ref=$(OPENBLAS_NUM_THREADS=1 /usr/bin/python3 "$FCREF" "$p" "${p%.hdf5}-sol.hdf5" 2>&1 | tail -1)
+    if [[ -f "$FCREF" ]]; then
+      ref=$(OPENBLAS_NUM_THREADS=1 /usr/bin/python3 "$FCREF" "$p" "${p%.hdf5}-sol.hdf5" 2>&1 | tail -1)
+    else
+      ref="not checked ($FCREF not found; set FCREF)"
+    fi
     echo "$(basename "$p") rc=$rc $st | fcref: $ref"
   done
 done
