@@ -1,6 +1,9 @@
 // Compiler hints that change code generation but never results.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+
 /// Keeps a function out of its callers: for a rare path (a fallback) whose
 /// size would otherwise stop the compiler from inlining the common path
 /// around it.
@@ -32,9 +35,13 @@
 #define FCSOLVE_PREFETCH(address) ((void)(address))
 #endif
 
-#include <cstdint>
-
 namespace fcsolve {
+
+inline constexpr std::uintptr_t kCacheLine = 64;  // x86-64 and most AArch64 cores
+
+/// The cache lines an object of `bytes` can touch wherever it starts: the
+/// count to ask prefetch_lines for to cover it.
+constexpr int cache_lines_spanned(std::size_t bytes) { return int((bytes + kCacheLine - 1) / kCacheLine) + 1; }
 
 /// Asks for the Lines cache lines from the one holding `begin`, for
 /// reading soon. A fixed count, unrolled: a loop to a data-dependent end
@@ -44,9 +51,8 @@ namespace fcsolve {
 /// unused lines: a prefetch never faults.
 template <int Lines>
 FCSOLVE_ALWAYS_INLINE void prefetch_lines(const void* begin) {
-  constexpr std::uintptr_t kLine = 64;  // x86-64 and most AArch64 cores
-  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(begin) & ~(kLine - 1);
-  for (int i = 0; i < Lines; ++i) FCSOLVE_PREFETCH(reinterpret_cast<const void*>(first + i * kLine));
+  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(begin) & ~(kCacheLine - 1);
+  for (int i = 0; i < Lines; ++i) FCSOLVE_PREFETCH(reinterpret_cast<const void*>(first + i * kCacheLine));
 }
 
 }  // namespace fcsolve

@@ -573,7 +573,7 @@ class Nsgs {
   static constexpr Index kPrefetchContacts = 16;
   static FCSOLVE_ALWAYS_INLINE void prefetch_contact(const Storage& W, const DataVector& data, Index b) {
     W.prefetch_row(b);
-    prefetch_lines<(sizeof(data[0]) + 63) / 64 + 1>(&data[static_cast<std::size_t>(b)]);
+    prefetch_lines<cache_lines_spanned(sizeof(data[0]))>(&data[static_cast<std::size_t>(b)]);
   }
 
   /// Colour by colour; the contacts of a colour in parallel, in one

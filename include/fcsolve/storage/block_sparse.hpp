@@ -106,8 +106,8 @@ class BlockSparseStorage {
   /// pile's rows hold 8 on average). A longer row's tail is left to the
   /// hardware prefetcher, which sees it as the stream it is.
   FCSOLVE_ALWAYS_INLINE void prefetch_row(Index a) const {
-    constexpr int kBlockLines = (10 * int(sizeof(Block)) + 63) / 64 + 1;
-    constexpr int kColumnLines = (10 * int(sizeof(Index)) + 63) / 64 + 1;
+    constexpr int kBlockLines = cache_lines_spanned(10 * sizeof(Block));
+    constexpr int kColumnLines = cache_lines_spanned(10 * sizeof(Index));
     const auto first = static_cast<std::size_t>(row_start_[static_cast<std::size_t>(a)]);
     prefetch_lines<kBlockLines>(blocks_.data() + first);
     prefetch_lines<kColumnLines>(column_.data() + first);
