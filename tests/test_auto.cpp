@@ -232,6 +232,31 @@ TEST_CASE("auto: the run's message is written whole when its first size guess is
   CHECK(message == "auto (nc=2 d=3 mu=[0.1,0.5]): stages [" + stage + ", " + stage + "]; a note");
 }
 
+TEST_CASE("auto: a factorising stage whose first step outlasts its budget is not started", "[auto]") {
+  using namespace registry::auto_detail;
+  FactorisationStepCost cost;
+  const auto stage = [](int iterations, double solve_seconds) {
+    SolverInfo info;
+    info.iterations = iterations;
+    info.solve_seconds = solve_seconds;
+    return info;
+  };
+  // nothing measured: every stage may start
+  CHECK_FALSE(cost.measured());
+  CHECK(cost.fits(1e-6));
+  cost.observe(stage(1, 20), 23);  // one step in 23 s, 3 s of it set-up (the 10^5 pile's Newton stage)
+  CHECK(cost.seconds() == Approx(23));
+  CHECK_FALSE(cost.fits(15));
+  CHECK(cost.fits(30));
+  CHECK(cost.fits(std::numeric_limits<double>::infinity()));  // no time limit
+  cost.observe(stage(5, 10), 12);  // 5 steps in 10 s after 2 s of set-up: a first step costs 4 s
+  CHECK(cost.seconds() == Approx(4));
+  CHECK(cost.fits(5));
+  CHECK_FALSE(cost.fits(3));
+  cost.observe(stage(0, 0.5), 0.5);  // no iteration: nothing learnt about a step
+  CHECK(cost.seconds() == Approx(4));
+}
+
 #ifdef FCSOLVE_WITH_KLU
 TEST_CASE("auto: the sweeps' allowance follows what a Newton step costs on W's pattern", "[auto]") {
   using namespace registry::auto_detail;

@@ -65,7 +65,10 @@
 // Stages switch on iteration counts and measured errors, never on measured
 // times, so a run is deterministic for a given input and settings; the wall
 // clock only cuts a stage when a finite max_time is given, and the budget is
-// split so that later stages keep a share of it.
+// split so that later stages keep a share of it. With a finite max_time, a
+// factorising stage is not started when the first step measured on an
+// earlier one outlasts its share (FactorisationStepCost): the one place a
+// measured time decides.
 #pragma once
 
 #include <fcsolve/core/short_number.hpp>
@@ -255,6 +258,38 @@ class InteriorPointCrawl {
   std::size_t count_ = 0;              ///< iterations seen since start()
   double first_ = 0;
   bool fired_ = false;
+};
+
+/// What the first step of a factorising stage (semismooth Newton, the
+/// interior point, the proximal point's inner Newton) has cost so far in a
+/// run: its set-up (each stage is a new solve: symbolic analysis, first
+/// factorisation) plus one iteration, the least over the stages seen. A
+/// factorisation cannot be interrupted, so a stage whose first step
+/// outlasts its share of a finite budget overruns it by that step and, cut
+/// after one step, seldom lowers the error: such a stage is not started
+/// and the sweeps that end every plan get its time. Every later
+/// factorising stage factorises a matrix of at least the pattern measured
+/// (W's, or H's and M's on FC/I where W is denser), hence the least.
+/// Measured on a sphere pile of 10^5 contacts with max_time 60 s
+/// (docs/results.md, 2026-11-29): a Newton stage given 15 s took 23 s for
+/// its one step, then the line search's, given about 3 s, took 27 s, and
+/// the run returned after 79 s; now after 57 s, the sweeps given the rest.
+class FactorisationStepCost {
+ public:
+  /// A factorising stage's info and the wall seconds of its call.
+  void observe(const SolverInfo& info, double seconds) {
+    const double solve = std::min(std::max(info.solve_seconds, 0.0), seconds);
+    const double first = (seconds - solve) + solve / std::max(info.iterations, 1);
+    if (info.iterations > 0 && first >= 0) seconds_ = std::min(seconds_, first);
+  }
+  /// Whether one first step fits `budget` seconds (always, before any
+  /// stage was measured or without a time limit).
+  bool fits(double budget) const { return !measured() || !(seconds_ > budget); }
+  bool measured() const { return std::isfinite(seconds_); }
+  double seconds() const { return seconds_; }
+
+ private:
+  double seconds_ = std::numeric_limits<double>::infinity();  ///< infinite: none measured
 };
 
 /// FC/I solved natively: iterations of the first stage, ADMM in (v, r)
@@ -634,6 +669,7 @@ class Plan : private StagedRun<LocalProblemView> {
       native_stage("sticking", "ipm-socqp", budget(0.2), std::min(kStickingProbeIterations, max_iter_left()),
                    "W much denser than H and M: if every contact sticks or is frictionless, the convex associated "
                    "problem is Coulomb's");
+      step_cost_.observe(last_.info, last_.seconds);
       if (done()) return finish();
     }
     const double e_start = best_error_;
@@ -779,12 +815,15 @@ class Plan : private StagedRun<LocalProblemView> {
       last_status_ = Status::Stalled;
       return;
     }
+    const char* entry = native_.problem ? "nsn-ac-global" : "nsn-ac";
+    if (!factorisation_fits(label, entry, max_time)) return;
     const int start = best_version_;
     const int max_iter = std::min(kNewtonMaxIter, max_iter_left());
     if (native_.problem)
-      native_stage(label, "nsn-ac-global", max_time, max_iter, std::move(why), line_search, stall_window);
+      native_stage(label, entry, max_time, max_iter, std::move(why), line_search, stall_window);
     else
-      stage(label, "nsn-ac", max_time, max_iter, std::move(why), false, line_search, stall_window);
+      stage(label, entry, max_time, max_iter, std::move(why), false, line_search, stall_window);
+    step_cost_.observe(last_.info, last_.seconds);
     if (last_status_ == Status::Stalled) stalled_from = start;
   }
   int full_steps_stalled_from_ = -1;   ///< best_version_ the full steps last stalled from
@@ -826,7 +865,7 @@ class Plan : private StagedRun<LocalProblemView> {
   /// (InteriorPointCrawl): the stages after it go on from its best iterate.
   /// Runs at most once (a second run would start from the same centre).
   void interior_point(const std::string& why) {
-    if (interior_point_ran_) return;
+    if (interior_point_ran_ || !factorisation_fits("ipm", "nipm", budget(0.3))) return;
     interior_point_ran_ = true;
     const int max_iter = std::min(kInteriorPointIterations, max_iter_left());
     watch_crawl_ = true;
@@ -836,9 +875,28 @@ class Plan : private StagedRun<LocalProblemView> {
     else
       stage("ipm", "nipm", budget(0.3), max_iter, why + ": the interior point");
     watch_crawl_ = false;
+    step_cost_.observe(last_.info, last_.seconds);
   }
   bool interior_point_ran_ = false;
   ReducedFrom native_;  ///< set when the Newton and IPM stages run on FC/I
+
+  /// Whether a factorising stage may start with `max_time` seconds
+  /// (FactorisationStepCost); when not, the run's report says so and
+  /// last_status_ is NotRun.
+  bool factorisation_fits(const char* label, const char* entry_name, double max_time) {
+    if (step_cost_.fits(max_time)) return true;
+    StageReport s;
+    s.name = label;
+    s.solver = entry_name;
+    s.error = best_error_;
+    s.status = to_string(Status::NotRun);
+    s.why = text("a first factorising step took ", step_cost_.seconds(), " s, more than the ", max_time,
+                 " s this stage would get: its time goes to the sweeps");
+    stages_.push_back(std::move(s));
+    last_status_ = Status::NotRun;
+    return false;
+  }
+  FactorisationStepCost step_cost_;
 
   /// After Newton stalled or NSGS did not finish: sweeps, Newton once more
   /// from what they reached, the interior point (if it has not run), the
@@ -865,9 +923,12 @@ class Plan : private StagedRun<LocalProblemView> {
     // the second Newton, not before: from the sweeps' iterate Newton often
     // converges (a sphere pile of 1000: 0.7 s) where the proximal stage
     // takes longer.
-    stage("proximal", "ppa", budget(0.6), std::min(find("ppa").default_max_iter, max_iter_left()),
-          "Newton stalled twice: regularised subproblems W + alpha I");
-    if (done()) return finish();
+    if (factorisation_fits("proximal", "ppa", budget(0.6))) {
+      stage("proximal", "ppa", budget(0.6), std::min(find("ppa").default_max_iter, max_iter_left()),
+            "Newton stalled twice: regularised subproblems W + alpha I");
+      step_cost_.observe(last_.info, last_.seconds);
+      if (done()) return finish();
+    }
     stage("nsgs", "nsgs", budget(1.0), max_iter_left(), "the rest of the budget to the robust sweeps");
     return finish();
   }
