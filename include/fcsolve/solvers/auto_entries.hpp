@@ -67,8 +67,9 @@
 // clock only cuts a stage when a finite max_time is given, and the budget is
 // split so that later stages keep a share of it. With a finite max_time, a
 // factorising stage is not started when the first step measured on an
-// earlier one outlasts its share (FactorisationStepCost): the one place a
-// measured time decides.
+// earlier one outlasts its share (FactorisationStepCost), and sweeps cut by
+// their share while predicted to end within one Newton step keep the time
+// (Plan::continue_sweeps): the two places where the clock decides.
 #pragma once
 
 #include <fcsolve/core/short_number.hpp>
@@ -776,9 +777,18 @@ class Plan : private StagedRun<LocalProblemView> {
       // A chunk of at most twice the prediction: where the sweeps reach a
       // plateau the next chunk's rate shows it, before the allowance is spent.
       int sweeps_now = std::min(sweep_chunk_, int(allowance));
+      double share = 0.5;
       if (predicted <= allowance)
         sweeps_now = std::min(sweeps_now, std::max(kFirstChunk, int(std::ceil(kChunkOverPrediction * predicted))));
-      else {
+      else if (last_chunk && last_status_ == Status::TimeLimit && predicted <= newton_step_) {
+        // The last chunk was cut by its share of max_time, not done, and the
+        // sweeps still predict tol within one Newton step's cost: Newton
+        // could not finish a step sooner, so the sweeps keep the time left.
+        share = 1.0;
+        sweeps_now = int(std::ceil(newton_step_));
+        prediction += ", within one Newton step (" + number(newton_step_) +
+                      "), the last chunk cut by its share of the time: the sweeps keep the rest";
+      } else {
         if (last_chunk || !std::isfinite(newton_step_) || !(kLastChunkShortfall * predicted <= newton_step_))
           return prediction + " (allowance " + number(allowance) + "): sweeps too slow";
         last_chunk = true;  // allowance spent, tol near: one Newton step's sweeps
@@ -786,7 +796,7 @@ class Plan : private StagedRun<LocalProblemView> {
         prediction += ", allowance spent, a Newton step costs " + number(newton_step_) + ": last chunk";
       }
       const double before = best_error_;
-      stage("nsgs", "nsgs", budget(0.5), std::min(sweeps_now, max_iter_left()), std::move(prediction));
+      stage("nsgs", "nsgs", budget(share), std::min(sweeps_now, max_iter_left()), std::move(prediction));
       if (done()) return std::string();
       const int sweeps = std::max(last_.info.iterations, 1);
       allowance -= sweeps;
