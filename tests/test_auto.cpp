@@ -257,6 +257,28 @@ TEST_CASE("auto: a factorising stage whose first step outlasts its budget is not
   CHECK(cost.seconds() == Approx(4));
 }
 
+TEST_CASE("auto: a proximal stage cut by the clock while lowering the error keeps the time left", "[auto]") {
+  using namespace registry::auto_detail;
+  const auto stage = [](Status status, int iterations) {
+    SolverInfo info;
+    info.status = status;
+    info.iterations = iterations;
+    return info;
+  };
+  // 33 subproblems in 8.5 s, 1.7e-4 -> 1e-7, 5.7 s left (a pile of 3000)
+  CHECK(proximal_keeps_time(stage(Status::TimeLimit, 33), 8.5, 1.7e-4, 1e-7, 5.7));
+  // the same stage stopped by anything but the clock: the sweeps take the time
+  for (const Status s : {Status::Stalled, Status::MaxIterations, Status::NumericalError})
+    CHECK_FALSE(proximal_keeps_time(stage(s, 33), 8.5, 1.7e-4, 1e-7, 5.7));
+  // cut by the clock without lowering the error
+  CHECK_FALSE(proximal_keeps_time(stage(Status::TimeLimit, 33), 8.5, 1.7e-4, 1.7e-4, 5.7));
+  // one subproblem of 0.38 s with 0.36 s left (the 10^4 pile on FC/I): does not fit
+  CHECK_FALSE(proximal_keeps_time(stage(Status::TimeLimit, 1), 0.38, 4.3e-4, 2.7e-4, 0.36));
+  CHECK(proximal_keeps_time(stage(Status::TimeLimit, 1), 0.38, 4.3e-4, 2.7e-4, 0.5));
+  // no subproblem finished: its cost is the whole stage's
+  CHECK_FALSE(proximal_keeps_time(stage(Status::TimeLimit, 0), 2.0, 1e-3, 9e-4, 1.5));
+}
+
 #ifdef FCSOLVE_WITH_KLU
 TEST_CASE("auto: the sweeps' allowance follows what a Newton step costs on W's pattern", "[auto]") {
   using namespace registry::auto_detail;
