@@ -302,8 +302,8 @@ class FactorisationStepCost {
 /// the stage's measured cost fits in the time left. Measured
 /// (docs/results.md, 2026-11-29): the sweeps that otherwise take the time
 /// barely move an iterate that Newton and the interior point have left
-/// (heavy-on-light stack of 10^4 contacts: 2.2e-5 -> solved in 16 s; sphere
-/// pile, walls); but where one subproblem outlasts what is left (10^4 pile
+/// (heavy-on-light stack of 10^4 contacts at 20 s: 1.3e-5 -> solved in
+/// 13.6 s; sphere pile, walls); but where one subproblem outlasts what is left (10^4 pile
 /// on FC/I, 0.38 s a subproblem with 0.36 s left), sweeps still move it.
 inline bool proximal_keeps_time(const SolverInfo& stage, double stage_seconds, double error_before,
                                 double error_after, double time_left) {
@@ -805,7 +805,7 @@ class Plan : private StagedRun<LocalProblemView> {
         // sweeps still predict tol within one Newton step's cost: Newton
         // could not finish a step sooner, so the sweeps keep the time left.
         share = 1.0;
-        sweeps_now = int(std::ceil(newton_step_));
+        sweeps_now = int(std::ceil(newton_step_));  // finite: last_chunk is set only then
         prediction += ", within one Newton step (" + number(newton_step_) +
                       "), the last chunk cut by its share of the time: the sweeps keep the rest";
       } else {
