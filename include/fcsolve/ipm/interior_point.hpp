@@ -58,7 +58,36 @@ struct EngineRun {
   double fake_residual = 0.0;    ///< the talk's stopping tolerance to watch (0: tol)
   int iteration_offset = 0;      ///< added to iteration numbers in callbacks
   double seconds_offset = 0;     ///< added to the callbacks' seconds (time before this run)
+  /// A soft time limit, in the solve's seconds (seconds_offset + this run's
+  /// clock; 0: none): past it the run ends with TimeLimit unless its rate
+  /// predicts tol soon (soft_time_extends).
+  double soft_time = 0;
 };
+
+/// Past a soft time limit the path following goes on while the rate of its
+/// best error over the last kSoftTimeRateWindow iterations predicts tol
+/// within twice that many iterations (a rate is not extrapolated far beyond
+/// the span that measured it: earlier on the path the error often falls
+/// fast, then stalls) and those iterations, at the run's time per iteration
+/// so far, fit in half the time left before max_time. The rate is measured
+/// again at every iteration, so a run that slows down ends at the iteration
+/// that shows it. Why (docs/results.md, 2026-11-29): an interior point
+/// cannot resume (a new run starts from the centre of the cones), so a run
+/// cut a few iterations short of tol loses all of them; a caller that
+/// shares its time between stages (`auto`) gives it a share as soft_time.
+inline constexpr int kSoftTimeRateWindow = 5;
+
+/// `best_now`: the best error so far; `best_before`: the same
+/// kSoftTimeRateWindow iterations ago.
+inline bool soft_time_extends(double best_now, double best_before, double tol, double seconds_per_iteration,
+                              double time_left) {
+  if (best_now <= tol) return true;
+  // no rate yet (fewer iterations than the window), or no progress over it
+  if (!std::isfinite(best_before) || !(best_now > 0) || !(best_now < best_before)) return false;
+  const double rate = std::pow(best_now / best_before, 1.0 / kSoftTimeRateWindow);
+  const double iterations = std::log(tol / best_now) / std::log(rate);
+  return iterations <= 2 * kSoftTimeRateWindow && iterations * seconds_per_iteration <= 0.5 * time_left;
+}
 
 enum class IpmExit {
   Converged,       ///< error <= tol
@@ -96,6 +125,7 @@ struct IpmReport {
   int factorizations = 0;
   double factor_seconds = 0;   ///< time in assembling + factorising K
   double seconds = 0;
+  bool past_soft_time = false; ///< went on past EngineRun::soft_time (soft_time_extends)
   int fake_iteration = -1;     ///< first iteration where the talk's test met tol with error > tol
   double fake_error = 0;       ///< the error there
   std::string note;            ///< why a NumericalError exit happened
@@ -264,6 +294,16 @@ class InteriorPoint {
     if (err <= opt.tol) return exit_with(rep, IpmExit::Converged);
     if (k >= opt.max_iter) return exit_with(rep, IpmExit::MaxIterations);
     if (clock.seconds() > opt.max_time) return exit_with(rep, IpmExit::TimeLimit);
+    bests_[std::size_t(k % bests_.size())] = best_error_;
+    if (opt.soft_time > 0 && opt.seconds_offset + clock.seconds() > opt.soft_time) {
+      const double before = k >= kSoftTimeRateWindow
+                                ? bests_[std::size_t((k - kSoftTimeRateWindow) % bests_.size())]
+                                : std::numeric_limits<double>::infinity();
+      if (k == 0 || !soft_time_extends(best_error_, before, opt.tol, clock.seconds() / k,
+                                       opt.max_time - clock.seconds()))
+        return exit_with(rep, IpmExit::TimeLimit);
+      rep.past_soft_time = true;
+    }
     if (k - last_improvement_ > opt.stall_window) return exit_with(rep, IpmExit::NoProgress);
     recent_[std::size_t(k % 4)] = best_error_;
     if (k >= 3 && best_error_ < opt.slow_below &&
@@ -462,6 +502,7 @@ class InteriorPoint {
   Iterate d_, best_;
   Vector r_d_, r_p_, rp_tilde_, r_s_, xi_, dxs_, dys_;
   std::array<double, 4> recent_{};  // best error of the last iterations
+  std::array<double, kSoftTimeRateWindow + 1> bests_{};  // the same over the soft time's window
   double best_error_ = 0;
   int last_improvement_ = 0, small_steps_ = 0;
 };

@@ -39,6 +39,10 @@ struct NipmSettings : IpmSettings {
   }
   bool recover = true;   ///< run the recovery steps 2-4 when step 1 fails
   bool recentre = true;  ///< include step 3 (re-centring) in the recovery
+  /// A soft time limit in seconds (0: none; EngineRun::soft_time): the solve
+  /// keeps to it (the polishes and recovery steps included) unless the path
+  /// following went on past it, its rate predicting tol; then to max_time.
+  double soft_time = 0;
 };
 
 /// The recovery strategies (steps 2-4 above) and the order they are tried in.
@@ -75,12 +79,14 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     total_ = 0;
     stopped_ = false;
     last_exit_ = IpmExit::Converged;
-    if (!this->try_warm_start(r, st, nullptr, st.max_time)) {
+    limit_ = st.soft_time > 0 ? std::min(st.soft_time, st.max_time) : st.max_time;
+    if (!this->try_warm_start(r, st, nullptr, limit_)) {
       // 1. NIPM until it slows down, then the polish.
       Iterate& it = this->it_;
       it.s.setZero(this->form_->num_contacts());
       this->engine_->cold_start(it, true);
-      const EngineRun opt = this->engine_run(st, true, st.tol, st.max_iter, st.max_time);
+      EngineRun opt = this->engine_run(st, true, st.tol, st.max_iter, st.max_time);
+      opt.soft_time = st.soft_time;
       first_exit_ = run("NIPM", opt, clock).exit;
       polish_best(clock);
       stopped_ = first_exit_ == IpmExit::Stopped;
@@ -94,7 +100,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     Status otherwise = Status::Stalled;
     if (stopped_) otherwise = Status::Stopped;
     else if (remaining() <= 0) otherwise = Status::MaxIterations;
-    else if (clock.seconds() > st.max_time) otherwise = Status::TimeLimit;
+    else if (clock.seconds() > limit_) otherwise = Status::TimeLimit;
     else if (last_exit_ == IpmExit::NumericalError) otherwise = Status::NumericalError;
     return this->finish(r, w, st.tol, otherwise, clock);
   }
@@ -102,9 +108,11 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
  private:
   int remaining() const { return settings_.max_iter - total_; }
   bool done(const Stopwatch& clock) const {
-    return this->best_.error <= settings_.tol || remaining() <= 0 ||
-           clock.seconds() > settings_.max_time;
+    return this->best_.error <= settings_.tol || remaining() <= 0 || clock.seconds() > limit_;
   }
+  /// The time this solve keeps to: soft_time, or max_time once a run went
+  /// on past soft_time.
+  double limit_ = 0;
 
   /// One engine run from the current iterate with what is left of the
   /// iteration and time budgets; its point is a candidate.
@@ -114,6 +122,10 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     opt.iteration_offset = total_;
     opt.seconds_offset = clock.seconds();
     const IpmReport rep = this->run_engine(this->it_, opt);
+    if (rep.past_soft_time) {
+      limit_ = settings_.max_time;
+      this->add_to_message("went on past soft_time: its rate predicted tol");
+    }
     total_ += rep.iterations;
     SolverInfo& info = this->info_;
     info.history.insert(info.history.end(), rep.history.begin(), rep.history.end());
@@ -130,7 +142,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     const NipmSettings& st = settings_;
     if (!st.polish || this->best_.error <= st.tol) return;
     Vector rr = this->best_.r, ww = this->best_.w;
-    const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol, st.max_time - clock.seconds());
+    const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol, limit_ - clock.seconds());
     this->add_to_message(this->describe_polish(pr));
     this->consider(rr, ww, pr.error);
   }
@@ -170,7 +182,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     static_cast<IpmSettings&>(as) = static_cast<const IpmSettings&>(settings_);
     as.sigma_max = 1.0;
     as.max_iter = remaining();
-    as.max_time = settings_.max_time - clock.seconds();
+    as.max_time = limit_ - clock.seconds();
     as.record_history = false;
     as.callback = IterationCallback();
     AclmSolver<Form> aclm(as);

@@ -57,6 +57,10 @@ inline std::vector<SettingSpec> ipm_settings(IpmKind kind) {
     const ipm::NipmSettings n;
     v.push_back(boolean_setting("recover", n.recover, "resume / re-centre / ACLM when the NIPM stalls"));
     v.push_back(boolean_setting("recentre", n.recentre, "re-centring as a recovery step"));
+    v.push_back(real_setting("soft_time", n.soft_time,
+                             "soft time limit, s (0: none): past it the interior point goes on only while its rate "
+                             "predicts tol within 10 iterations and half the time left to max_time",
+                             0.0));
   }
   return v;
 }
@@ -108,6 +112,7 @@ SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, SolveOu
   if (kind == IpmKind::Nipm) {
     auto s = ipm_settings_from<ipm::NipmSettings>(req);
     s.recover = req.settings.boolean("recover");
+    s.soft_time = req.settings.real("soft_time");
     s.recentre = req.settings.boolean("recentre");
     ipm::NonsmoothIpm<Form> solver(s);
     return run(solver);
