@@ -390,38 +390,83 @@ TEST_CASE("Newton: KLU refactorises J with its first pivot order and checks ever
 #endif
   }
   SECTION("a pivot order gone bad is caught by the solve's backward error") {
-    // First [[1, .5], [.5, 1]]: KLU keeps the diagonal pivots. Then the
-    // same pattern with a tiny first diagonal: reusing that order divides
-    // by 1e-18 (growth 1e18), so the solve must factorise afresh.
+    // [[a, 1, 2], [3, 1, 1], [1, 2, 1]]; with a = 1 KLU keeps the diagonal
+    // pivots. With a = 1e-14, reusing that order divides by 1e-14 (growth
+    // 1e14): the solve's backward error is ~1e-3 and still ~1e-5 after a
+    // refinement step, so the solve must factorise afresh with partial
+    // pivoting (a = 1e-18 would not do: the reused order meets an exact
+    // zero pivot, and the refactorisation reports it).
     const auto matrix = [](double a) {
-      DenseMatrix A(2, 2);
-      A << a, 1.0, 1.0, 1.0;
+      DenseMatrix A(3, 3);
+      A << a, 1.0, 2.0, 3.0, 1.0, 1.0, 1.0, 2.0, 1.0;
       return A;
     };
-    DenseMatrix A = matrix(1.0);
-    A(0, 1) = A(1, 0) = 0.5;
+    const DenseMatrix A = matrix(1.0);
     KluPatternLU lu;
     const SparseMatrix J1 = A.sparseView();
     REQUIRE(lu.factorize(J1));
-    const Vector b = (Vector(2) << 1.0, 2.0).finished();
-    Vector x(2);
+    const Vector b = (Vector(3) << 1.0, 2.0, 3.0).finished();
+    Vector x(3);
     lu.solve(b, x);
-    CHECK((A * x - b).norm() <= 1e-15 * b.norm());
+    CHECK((A * x - b).norm() <= 1e-14 * b.norm());
     CHECK(lu.fresh_factorisations() == 1);
-    const DenseMatrix B = matrix(1e-18);
+    CHECK(lu.pivoted_factorisations() == 0);
+    const DenseMatrix B = matrix(1e-14);
     const SparseMatrix J2 = B.sparseView(1.0, 0.0);  // keep the tiny entry: same pattern
-    REQUIRE(J2.nonZeros() == 4);
+    REQUIRE(J2.nonZeros() == 9);
     REQUIRE(lu.factorize(J2));
     lu.solve(b, x);
     CHECK((B * x - b).norm() <= 1e-14 * b.norm());
     CHECK(lu.fresh_factorisations() == 2);
-    // a well-conditioned matrix of the pattern is refactorised, not factorised
-    const DenseMatrix C = matrix(3.0);
+    CHECK(lu.pivoted_factorisations() == 1);
+    // a matrix of the pattern that suits the new pivot order (rows 2, 1, 3)
+    // is refactorised, not factorised
+    const DenseMatrix C = matrix(2.0);
     const SparseMatrix J3 = C.sparseView();
     REQUIRE(lu.factorize(J3));
     lu.solve(b, x);
     CHECK((C * x - b).norm() <= 1e-14 * b.norm());
     CHECK(lu.fresh_factorisations() == 2);
+  }
+  SECTION("a fresh factorisation keeps AMD's diagonal pivots where they are not tiny") {
+    // A block arrow, the shape of a Newton matrix whose contact rows have
+    // small pivots: 200 unknowns with diagonal 1e-4, each coupled to two of
+    // 20 border unknowns (diagonal 1). Every small pivot is below 1e-3 of
+    // its column, so KLU's default pivoting swaps border rows up and adds
+    // half again to the factors AMD predicted; the diagonal pivots fill
+    // only what AMD predicted, and the solve (checked, refined once here:
+    // growth 1e4) is accurate.
+    const int n = 200, k = 20;
+    DenseMatrix A = DenseMatrix::Zero(n + k, n + k);
+    A.diagonal().head(n).setConstant(1e-4);
+    A.diagonal().tail(k).setOnes();
+    for (int i = 0; i < n; ++i)
+      for (const int j : {i % k, (7 * i + 3 + i / k) % k}) A(i, n + j) = A(n + j, i) = 1.0;
+    const SparseMatrix J = A.sparseView();
+    KluPatternLU lu;
+    REQUIRE(lu.factorize(J));
+    const Vector b = Vector::LinSpaced(n + k, 1.0, -2.0);
+    Vector x(n + k);
+    lu.solve(b, x);
+    const double backward = (A * x - b).lpNorm<Eigen::Infinity>() /
+                            (A.cwiseAbs().rowwise().sum().maxCoeff() * x.lpNorm<Eigen::Infinity>() +
+                             b.lpNorm<Eigen::Infinity>());
+    CHECK(backward <= kRefactorBackwardError);
+    CHECK(lu.fill_over_prediction() <= 1.0);
+    CHECK(lu.pivoted_factorisations() == 0);
+    // the case is real: KLU with its default pivot tolerance fills it
+    klu_common common;
+    klu_defaults(&common);
+    REQUIRE(common.tol == kPartialPivotTolerance);
+    SparseMatrix K = J;
+    klu_symbolic* symbolic = klu_analyze(n + k, K.outerIndexPtr(), K.innerIndexPtr(), &common);
+    REQUIRE(symbolic);
+    klu_numeric* numeric = klu_factor(K.outerIndexPtr(), K.innerIndexPtr(), K.valuePtr(), symbolic, &common);
+    REQUIRE(numeric);
+    CHECK(common.noffdiag > 0);
+    CHECK(double(numeric->lnz + numeric->unz) > 1.5 * (symbolic->lnz + symbolic->unz));
+    klu_free_numeric(&numeric, &common);
+    klu_free_symbolic(&symbolic, &common);
   }
   SECTION("a singular J is reported, and the next one factorised afresh") {
     DenseMatrix A = DenseMatrix::Zero(3, 3);
