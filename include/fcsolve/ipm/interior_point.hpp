@@ -19,6 +19,7 @@
 #include <fcsolve/core/solver_settings.hpp>
 #include <fcsolve/core/timer.hpp>
 #include <fcsolve/ipm/form_common.hpp>
+#include <fcsolve/ipm/soft_time.hpp>
 
 #include <algorithm>
 #include <array>
@@ -63,31 +64,6 @@ struct EngineRun {
   /// predicts tol soon (soft_time_extends).
   double soft_time = 0;
 };
-
-/// Past a soft time limit the path following goes on while the rate of its
-/// best error over the last kSoftTimeRateWindow iterations predicts tol
-/// within twice that many iterations (a rate is not extrapolated far beyond
-/// the span that measured it: earlier on the path the error often falls
-/// fast, then stalls) and those iterations, at the run's time per iteration
-/// so far, fit in half the time left before max_time. The rate is measured
-/// again at every iteration, so a run that slows down ends at the iteration
-/// that shows it. Why (docs/results.md, 2026-11-29): an interior point
-/// cannot resume (a new run starts from the centre of the cones), so a run
-/// cut a few iterations short of tol loses all of them; a caller that
-/// shares its time between stages (`auto`) gives it a share as soft_time.
-inline constexpr int kSoftTimeRateWindow = 5;
-
-/// `best_now`: the best error so far; `best_before`: the same
-/// kSoftTimeRateWindow iterations ago.
-inline bool soft_time_extends(double best_now, double best_before, double tol, double seconds_per_iteration,
-                              double time_left) {
-  if (best_now <= tol) return true;
-  // no rate yet (fewer iterations than the window), or no progress over it
-  if (!std::isfinite(best_before) || !(best_now > 0) || !(best_now < best_before)) return false;
-  const double rate = std::pow(best_now / best_before, 1.0 / kSoftTimeRateWindow);
-  const double iterations = std::log(tol / best_now) / std::log(rate);
-  return iterations <= 2 * kSoftTimeRateWindow && iterations * seconds_per_iteration <= 0.5 * time_left;
-}
 
 enum class IpmExit {
   Converged,       ///< error <= tol
@@ -296,21 +272,21 @@ class InteriorPoint {
     if (clock.seconds() > opt.max_time) return exit_with(rep, IpmExit::TimeLimit);
     bests_[std::size_t(k % bests_.size())] = best_error_;
     if (opt.soft_time > 0 && opt.seconds_offset + clock.seconds() > opt.soft_time) {
-      const double before = k >= kSoftTimeRateWindow
-                                ? bests_[std::size_t((k - kSoftTimeRateWindow) % bests_.size())]
-                                : std::numeric_limits<double>::infinity();
+      const double before = k >= kSoftTimeRateWindow ? best_before(k, kSoftTimeRateWindow)
+                                                     : std::numeric_limits<double>::infinity();
       if (k == 0 || !soft_time_extends(best_error_, before, opt.tol, clock.seconds() / k,
                                        opt.max_time - clock.seconds()))
         return exit_with(rep, IpmExit::TimeLimit);
       rep.past_soft_time = true;
     }
     if (k - last_improvement_ > opt.stall_window) return exit_with(rep, IpmExit::NoProgress);
-    recent_[std::size_t(k % 4)] = best_error_;
-    if (k >= 3 && best_error_ < opt.slow_below &&
-        best_error_ > 0.5 * recent_[std::size_t((k - 3) % 4)])
+    if (k >= 3 && best_error_ < opt.slow_below && best_error_ > 0.5 * best_before(k, 3))
       return exit_with(rep, IpmExit::SlowProgress);
     return false;
   }
+
+  /// The best error j <= kSoftTimeRateWindow iterations before k (k >= j).
+  double best_before(int k, int j) const { return bests_[std::size_t((k - j) % int(bests_.size()))]; }
 
   static bool exit_with(IpmReport& rep, IpmExit e) {
     rep.exit = e;
@@ -501,8 +477,10 @@ class InteriorPoint {
   ContactState<D> state_;
   Iterate d_, best_;
   Vector r_d_, r_p_, rp_tilde_, r_s_, xi_, dxs_, dys_;
-  std::array<double, 4> recent_{};  // best error of the last iterations
-  std::array<double, kSoftTimeRateWindow + 1> bests_{};  // the same over the soft time's window
+  // best error of the last iterations, the slow-progress test's (3 back)
+  // and the soft time's (kSoftTimeRateWindow back)
+  std::array<double, kSoftTimeRateWindow + 1> bests_{};
+  static_assert(kSoftTimeRateWindow >= 3, "the ring serves the slow-progress test too");
   double best_error_ = 0;
   int last_improvement_ = 0, small_steps_ = 0;
 };

@@ -124,7 +124,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     const IpmReport rep = this->run_engine(this->it_, opt);
     if (rep.past_soft_time) {
       limit_ = settings_.max_time;
-      this->add_to_message("went on past soft_time: its rate predicted tol");
+      this->add_to_message(kPastSoftTimeNote);
     }
     total_ += rep.iterations;
     SolverInfo& info = this->info_;

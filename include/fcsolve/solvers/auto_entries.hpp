@@ -79,6 +79,7 @@
 
 #include <fcsolve/core/short_number.hpp>
 #include <fcsolve/core/timer.hpp>
+#include <fcsolve/ipm/soft_time.hpp>
 #include <fcsolve/linalg/backend_traits.hpp>
 #include <fcsolve/linalg/default_backend.hpp>
 #include <fcsolve/problem/reduced_density.hpp>
@@ -305,8 +306,9 @@ class FactorisationStepCost {
 /// (docs/results.md, 2026-11-29): the sweeps that otherwise take the time
 /// barely move an iterate that Newton and the interior point have left
 /// (heavy-on-light stack of 10^4 contacts at 20 s: 1.3e-5 -> solved in
-/// 13.6 s; sphere pile, walls); but where one subproblem outlasts what is left (10^4 pile
-/// on FC/I, 0.38 s a subproblem with 0.36 s left), sweeps still move it.
+/// 13.6 s; sphere pile, walls); but where one subproblem outlasts what is
+/// left (10^4 pile on FC/I, 0.38 s a subproblem with 0.36 s left), sweeps
+/// still move it.
 inline bool proximal_keeps_time(const SolverInfo& stage, double stage_seconds, double error_before,
                                 double error_after, double time_left) {
   if (stage.status != Status::TimeLimit || !(error_after < error_before)) return false;
@@ -916,7 +918,7 @@ class Plan : private StagedRun<LocalProblemView> {
       native_stage("ipm", "nipm", max_time, max_iter, why + ": the interior point");
     else
       stage("ipm", "nipm", max_time, max_iter, why + ": the interior point");
-    if (last_.info.message.find("past soft_time") != std::string::npos)
+    if (last_.info.message.find(ipm::kPastSoftTimeNote) != std::string::npos)
       stages_.back().why += "; went on past its share of the time: its rate predicted tol";
     watch_crawl_ = false;
     step_cost_.observe(last_.info, last_.seconds);
