@@ -3,7 +3,11 @@
 // their linear system, their variables and their residuals' units, not in
 // the loop: a step, the best iterate kept by its FCLIB error, Nesterov's
 // extrapolation with restart (admm_rules.hpp), the budgets and the callback,
-// rho adapted every adapt_interval iterations. The derived class provides
+// rho adapted every adapt_interval iterations. A factorisation cannot be
+// interrupted, so one that would not end within max_time (at the time the
+// last one took) is not started: rho stays, and the balancing of the best
+// iterate's velocity after an unconverged solve (AdmmGlobal) is skipped.
+// The derived class provides
 //   double step(double& primal_sq, double& dual_sq)  one iteration; its FCLIB error
 //   void save_best()                                 keep the current iterate
 //   double combined_residual(double dual_sq)         c_k of the restart rule
@@ -70,7 +74,7 @@ class AdmmLoop {
       iterate(clock);
     }
     last_rho_ = rho_;
-    self().finish_solve();
+    if (factorization_fits(clock)) self().finish_solve();
     if (best_error_ <= settings_.tol) info_.status = Status::Converged;
     info_.error = best_error_;
     info_.solve_seconds = clock.seconds();
@@ -79,12 +83,22 @@ class AdmmLoop {
   bool refactorize(double rho) {
     rho_ = rho;
     ++factorizations_;
-    return self().factorize(rho);
+    const Stopwatch clock;
+    const bool ok = self().factorize(rho);
+    factorization_seconds_ = clock.seconds();
+    return ok;
+  }
+
+  /// Whether one more factorisation, at the time the last one took, ends
+  /// within max_time.
+  bool factorization_fits(const Stopwatch& clock) const {
+    return clock.seconds() + factorization_seconds_ <= settings_.max_time;
   }
 
   Settings settings_;
   SolverInfo info_;
   double rho0_ = 1, rho_ = 1, last_rho_ = 0, best_error_ = 0;
+  double factorization_seconds_ = 0;  ///< of the last refactorize()
   int factorizations_ = 0;
   bool factorization_ok_ = false;
 
@@ -119,7 +133,8 @@ class AdmmLoop {
         info_.status = Status::TimeLimit;
         break;
       }
-      if (k % std::max(1, settings_.adapt_interval) == 0 && self().adapt_rho(primal_sq, dual_sq)) {
+      if (k % std::max(1, settings_.adapt_interval) == 0 && factorization_fits(clock) &&
+          self().adapt_rho(primal_sq, dual_sq)) {
         if (!factorization_ok_) {
           info_.status = Status::NumericalError;
           info_.message = Derived::kFactorizationFailure;
