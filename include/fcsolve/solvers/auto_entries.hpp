@@ -899,7 +899,7 @@ class Plan : private StagedRun<LocalProblemView> {
   /// (InteriorPointCrawl): the stages after it go on from its best iterate.
   /// Runs at most once (a second run would start from the same centre). For
   /// the same reason its share is a soft limit (nipm's soft_time,
-  /// ipm/interior_point.hpp: soft_time_extends): it goes on past it while
+  /// ipm/soft_time.hpp: soft_time_extends): it goes on past it while
   /// its rate predicts tol within a few iterations and half the time left.
   /// Measured (docs/results.md, 2026-11-29): a held-out tower of 4872
   /// contacts, whose 24 iterations (4.7-5.8 s) the share cut at 17 to 23
