@@ -16,8 +16,10 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <string>
+#include <thread>
 
 using namespace fcsolve;
 
@@ -363,10 +365,10 @@ TEST_CASE("auto: a bundled FCLIB problem of each kind", "[auto][fclib]") {
   }
 }
 
-TEST_CASE("auto: FC/I of an elastic block is solved in (v, r), W never formed", "[auto][fem]") {
-  // An elastic block of hexahedra pressed on a plane (scenes/), stepped in
-  // time until ~100 bottom nodes touch: one elastic body, so M^-1 couples
-  // every dof and the reduced W would be dense.
+/// An elastic block of hexahedra pressed on a plane (scenes/), stepped in
+/// time until ~100 bottom nodes touch: one elastic body, so M^-1 couples
+/// every dof and the reduced W would be dense.
+static GlobalProblem elastic_block_on_plane() {
   scenes::HexBlock block;
   block.size = scenes::Vec3(0.4, 0.4, 0.2);
   block.nx = block.ny = 11;
@@ -382,7 +384,11 @@ TEST_CASE("auto: FC/I of an elastic block is solved in (v, r), W never formed", 
   settings.max_iter = 20;
   scenes::ElasticStepper stepper(scene, settings);
   for (int k = 0; k < 8 && stepper.contacts().size() < 100; ++k) stepper.step();
-  const GlobalProblem& p = stepper.global();
+  return stepper.global();
+}
+
+TEST_CASE("auto: FC/I of an elastic block is solved in (v, r), W never formed", "[auto][fem]") {
+  const GlobalProblem p = elastic_block_on_plane();
   REQUIRE(p.mu.size() >= 100);
 
   // One component: every column of H touches all n dofs.
@@ -397,4 +403,40 @@ TEST_CASE("auto: FC/I of an elastic block is solved in (v, r), W never formed", 
   CHECK(global_error_report(p, reduction.free_velocity_norm(), s.r, s.v, s.lambda).error <= 1e-8);
   // Deterministic: the same call gives the same iterate.
   CHECK(fcsolve::solve(p).r == s.r);
+}
+
+TEST_CASE("auto: FC/I natively, no Newton step is started that ADMM's first step shows cannot fit",
+          "[auto][fem]") {
+  const GlobalProblem p = elastic_block_on_plane();
+  REQUIRE(p.mu.size() >= 100);
+  // The clock is made to run out during ADMM's first iteration: the caller's
+  // callback waits until 95 % of max_time has passed. ADMM's first step
+  // (set-up and that iteration) then costs more than the 3 % of max_time a
+  // Newton stage would get, and more than the 5 % left: neither Newton nor
+  // ADMM again is started, and the run ends for lack of time at once.
+  constexpr double kMaxTime = 2.0;
+  SolveSettings settings;
+  settings.max_time = kMaxTime;
+  Stopwatch clock;  // started before the run's: it reads at least as much
+  settings.callback = [&clock](const IterationInfo&) {
+    const double wait = 0.95 * kMaxTime - clock.seconds();
+    if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+    return false;
+  };
+  const Solution s = fcsolve::solve(p, settings);
+  INFO(s.info.message);
+  REQUIRE(s.stages.size() == 3);
+  CHECK(s.stages[0].solver == "admm-global");
+  CHECK(s.stages[0].iterations == 1);
+  CHECK(s.stages[1].solver == "nsn-ac-global");
+  CHECK(s.stages[1].status == "not-run");
+  CHECK(s.stages[2].solver == "admm-global");
+  CHECK(s.stages[2].status == "not-run");
+  CHECK(s.info.status == Status::TimeLimit);
+  CHECK(s.info.iterations == 1);
+  CHECK(clock.seconds() < kMaxTime);  // nothing ran after the first iteration
+  // What it returns is ADMM's iterate, its error the independent one.
+  GlobalReduction<DefaultBackend> reduction(p, /*form_W=*/false);
+  CHECK(global_error_report(p, reduction.free_velocity_norm(), s.r, s.v, s.lambda).error ==
+        Approx(s.info.error).epsilon(1e-12));
 }

@@ -565,6 +565,24 @@ class StagedRun {
     return requests_.back();
   }
 
+  /// Whether a factorising stage may start with `max_time` seconds
+  /// (FactorisationStepCost); when not, the run's report says so, naming
+  /// what gets its time, and last_status_ is NotRun.
+  bool factorisation_fits(const char* label, const char* entry_name, double max_time,
+                          const char* instead = "the sweeps") {
+    if (step_cost_.fits(max_time)) return true;
+    StageReport s;
+    s.name = label;
+    s.solver = entry_name;
+    s.error = best_error_;
+    s.status = to_string(Status::NotRun);
+    s.why = text("a first factorising step took ", step_cost_.seconds(), " s, more than the ", max_time,
+                 " s this stage would get: its time goes to ", instead);
+    stages_.push_back(std::move(s));
+    last_status_ = Status::NotRun;
+    return false;
+  }
+
   SolveOutcome finish(const std::string& note = "") {
     SolveOutcome out;
     // The run ends here: its iterates move out.
@@ -574,9 +592,11 @@ class StagedRun {
     out.info.error = best_error_;
     out.info.iterations = iterations_;
     out.info.history = std::move(history_);
+    // A run that ends on a stage not started (NotRun: its first step would
+    // not fit the time left, factorisation_fits) ends for lack of time.
     out.info.status = best_error_ <= tol()  ? Status::Converged
                       : stopped_            ? Status::Stopped
-                      : out_of_time()       ? Status::TimeLimit
+                      : out_of_time() || last_status_ == Status::NotRun ? Status::TimeLimit
                       : out_of_iterations() ? Status::MaxIterations
                       : !std::isfinite(best_error_) ? Status::NumericalError
                                                     : Status::Stalled;
@@ -610,6 +630,7 @@ class StagedRun {
   /// request's callback feeds crawl_, which may stop it.
   bool watch_crawl_ = false;
   InteriorPointCrawl crawl_;
+  FactorisationStepCost step_cost_;  ///< the least first step of the factorising stages so far
   double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
 
@@ -926,23 +947,6 @@ class Plan : private StagedRun<LocalProblemView> {
   bool interior_point_ran_ = false;
   ReducedFrom native_;  ///< set when the Newton and IPM stages run on FC/I
 
-  /// Whether a factorising stage may start with `max_time` seconds
-  /// (FactorisationStepCost); when not, the run's report says so and
-  /// last_status_ is NotRun.
-  bool factorisation_fits(const char* label, const char* entry_name, double max_time) {
-    if (step_cost_.fits(max_time)) return true;
-    StageReport s;
-    s.name = label;
-    s.solver = entry_name;
-    s.error = best_error_;
-    s.status = to_string(Status::NotRun);
-    s.why = text("a first factorising step took ", step_cost_.seconds(), " s, more than the ", max_time,
-                 " s this stage would get: its time goes to the sweeps");
-    stages_.push_back(std::move(s));
-    last_status_ = Status::NotRun;
-    return false;
-  }
-  FactorisationStepCost step_cost_;
 
   /// After Newton stalled or NSGS did not finish: sweeps, Newton once more
   /// from what they reached, the interior point (if it has not run), the
@@ -1004,22 +1008,47 @@ class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
                             " nnz(H): M^-1 couples the dofs, W would be dense; FC/I in (v, r)";
     stage("admm-global", "admm-global", budget(0.4), std::min(kNativeAdmmIterations, max_iter_left()),
           why + ", one factorisation per rho");
+    step_cost_.observe(last_.info, last_.seconds);
     if (done()) return finish();
-    stage("newton-global", "nsn-ac-global", budget(0.6), std::min(kNewtonMaxIter, max_iter_left()),
-          std::string("admm-global ") + to_string(last_status_) + ": semismooth Newton from its iterate",
-          false, nullptr, kNewtonStallWindow);
-    if (done()) return finish();
-    if (last_status_ == Status::TimeLimit) {
-      // Cut by its share of the budget, not by its stall window: Newton was
-      // still converging (measured: a 10^4-contact elastic block needs 5
-      // steps of 10 s each), so it keeps the time left.
-      stage("newton-global", "nsn-ac-global", budget(1.0), std::min(kNewtonMaxIter, max_iter_left()),
-            "still converging when its share of the budget ran out", false, nullptr, kNewtonStallWindow);
-      if (done() || last_status_ == Status::TimeLimit) return finish();
+    // ADMM's first step (compute: M factorised, the pattern of M + rho H H^T
+    // analysed; then one iteration) is a lower bound for a Newton step on
+    // FC/I, whose Jacobian holds M and H: a step that would not fit is not
+    // started (FactorisationStepCost). Measured (docs/results.md,
+    // 2026-11-29): an elastic pair of 1458 contacts at max_time 1 s returned
+    // after 2.6 s, one Newton step of 1.8 s started with 0.1 s left.
+    if (newton_global(budget(0.6), std::string("admm-global ") + to_string(last_status_) +
+                                       ": semismooth Newton from its iterate")) {
+      if (done()) return finish();
+      if (last_status_ == Status::TimeLimit) {
+        // Cut by its share of the budget, not by its stall window: Newton was
+        // still converging (measured: a 10^4-contact elastic block needs 5
+        // steps of 10 s each), so it keeps the time left.
+        newton_global(budget(1.0), "still converging when its share of the budget ran out");
+        if (done() || last_status_ == Status::TimeLimit) return finish();
+      }
+      if (factorisation_fits("ipm", "nipm", budget(1.0), "nothing: the run ends"))
+        stage("ipm", "nipm", budget(1.0), max_iter_left(),
+              std::string("newton ") + to_string(last_status_) + ": the interior point for the time left");
+      return finish();
     }
-    stage("ipm", "nipm", budget(1.0), max_iter_left(),
-          std::string("newton ") + to_string(last_status_) + ": the interior point for the time left");
+    // No Newton step fits: ADMM, whose steps are cheap once factorised, goes
+    // on from its best iterate where its first step fits the time left.
+    if (factorisation_fits("admm-global", "admm-global", budget(1.0), "nothing: the run ends"))
+      stage("admm-global", "admm-global", budget(1.0), max_iter_left(),
+            "no Newton step fits the time left: ADMM goes on from its best iterate");
     return finish();
+  }
+
+ private:
+  /// A Newton stage on FC/I where its first step fits `max_time`; false
+  /// when it was not started.
+  bool newton_global(double max_time, std::string why) {
+    if (!factorisation_fits("newton-global", "nsn-ac-global", max_time, "admm-global, if its step fits"))
+      return false;
+    stage("newton-global", "nsn-ac-global", max_time, std::min(kNewtonMaxIter, max_iter_left()), std::move(why),
+          false, nullptr, kNewtonStallWindow);
+    step_cost_.observe(last_.info, last_.seconds);
+    return true;
   }
 };
 
