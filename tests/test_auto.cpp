@@ -257,6 +257,38 @@ TEST_CASE("auto: a factorising stage whose first step outlasts its budget is not
   CHECK_FALSE(cost.fits(3));
   cost.observe(stage(0, 0.5), 0.5);  // no iteration: nothing learnt about a step
   CHECK(cost.seconds() == Approx(4));
+  cost.observe_first_step(-1);  // not timed
+  CHECK(cost.seconds() == Approx(4));
+  cost.observe_first_step(2.5);  // set-up to the end of a first iteration, timed
+  CHECK(cost.seconds() == Approx(2.5));
+}
+
+TEST_CASE("auto: ADMM's first stage on FC/I ends at its share only for a Newton step that fits", "[auto]") {
+  using namespace registry::auto_detail;
+  AdmmHandover handover;
+  // plan clock: the stage starts at 0, its share ends at 0.4, the run at 1
+  handover.start(0, 0.4, 1.0);
+  CHECK_FALSE(handover.hands_over(0.01));  // the first iteration: a first step of 0.01
+  CHECK(handover.first_step() == Approx(0.01));
+  CHECK_FALSE(handover.hands_over(0.39));
+  CHECK(handover.hands_over(0.41));  // 0.01 fits the Newton share of what is left
+  CHECK(handover.fired());
+  CHECK_FALSE(handover.deadline_reached());
+
+  handover.start(0, 0.4, 1.0);
+  CHECK_FALSE(handover.hands_over(0.9));   // a first step of 0.9
+  CHECK_FALSE(handover.hands_over(0.95));  // past the share, but 0.9 > 0.6 * 0.05: ADMM goes on
+  CHECK_FALSE(handover.fired());
+  // The run's deadline ends it, though ADMM's own clock (from solve(), after
+  // its set-up) has time left.
+  CHECK(handover.hands_over(1.0));
+  CHECK(handover.deadline_reached());
+  CHECK_FALSE(handover.fired());
+
+  // no time limit: never
+  handover.start(0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+  CHECK_FALSE(handover.hands_over(0.01));
+  CHECK_FALSE(handover.hands_over(1e9));
 }
 
 TEST_CASE("auto: a proximal stage cut by the clock while lowering the error keeps the time left", "[auto]") {
@@ -405,38 +437,55 @@ TEST_CASE("auto: FC/I of an elastic block is solved in (v, r), W never formed", 
   CHECK(fcsolve::solve(p).r == s.r);
 }
 
-TEST_CASE("auto: FC/I natively, no Newton step is started that ADMM's first step shows cannot fit",
-          "[auto][fem]") {
+TEST_CASE("auto: FC/I natively, ADMM hands over to Newton only where a Newton step fits", "[auto][fem]") {
   const GlobalProblem p = elastic_block_on_plane();
   REQUIRE(p.mu.size() >= 100);
-  // The clock is made to run out during ADMM's first iteration: the caller's
-  // callback waits until 95 % of max_time has passed. ADMM's first step
-  // (set-up and that iteration) then costs more than the 3 % of max_time a
-  // Newton stage would get, and more than the 5 % left: neither Newton nor
-  // ADMM again is started, and the run ends for lack of time at once.
-  constexpr double kMaxTime = 2.0;
+  // The clock is moved on by the caller's callback, which waits at one
+  // iteration until a fraction of max_time has passed (a stand-in for a
+  // slow factorisation or a loaded machine). ADMM's first step bounds a
+  // Newton step from below.
+  constexpr double kMaxTime = 3.0;
   SolveSettings settings;
   settings.max_time = kMaxTime;
   Stopwatch clock;  // started before the run's: it reads at least as much
-  settings.callback = [&clock](const IterationInfo&) {
-    const double wait = 0.95 * kMaxTime - clock.seconds();
-    if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
-    return false;
+  const auto wait_at = [&clock](int iteration, double fraction) {
+    return [&clock, iteration, fraction](const IterationInfo& it) {
+      const double wait = fraction * kMaxTime - clock.seconds();
+      if (it.iteration == iteration && wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+      return false;
+    };
   };
-  const Solution s = fcsolve::solve(p, settings);
-  INFO(s.info.message);
-  REQUIRE(s.stages.size() == 3);
-  CHECK(s.stages[0].solver == "admm-global");
-  CHECK(s.stages[0].iterations == 1);
-  CHECK(s.stages[1].solver == "nsn-ac-global");
-  CHECK(s.stages[1].status == "not-run");
-  CHECK(s.stages[2].solver == "admm-global");
-  CHECK(s.stages[2].status == "not-run");
-  CHECK(s.info.status == Status::TimeLimit);
-  CHECK(s.info.iterations == 1);
-  CHECK(clock.seconds() < kMaxTime);  // nothing ran after the first iteration
-  // What it returns is ADMM's iterate, its error the independent one.
   GlobalReduction<DefaultBackend> reduction(p, /*form_W=*/false);
-  CHECK(global_error_report(p, reduction.free_velocity_norm(), s.r, s.v, s.lambda).error ==
-        Approx(s.info.error).epsilon(1e-12));
+  const auto independent_error = [&](const Solution& s) {
+    return global_error_report(p, reduction.free_velocity_norm(), s.r, s.v, s.lambda).error;
+  };
+
+  SECTION("a first step of 90 % of max_time: ADMM keeps the time, no Newton stage starts") {
+    settings.tol = 1e-18;  // below round-off: ADMM ends at its 200 iterations with 10 % left
+    settings.callback = wait_at(1, 0.9);
+    const Solution s = fcsolve::solve(p, settings);
+    INFO(s.info.message);
+    REQUIRE(s.stages.size() == 3);
+    CHECK(s.stages[0].solver == "admm-global");
+    CHECK(s.stages[0].iterations == 200);  // not handed over at its 40 %
+    CHECK(s.stages[1].solver == "nsn-ac-global");
+    CHECK(s.stages[1].status == "not-run");
+    CHECK(s.stages[2].solver == "admm-global");
+    CHECK(s.stages[2].status == "not-run");
+    CHECK(s.info.status == Status::TimeLimit);
+    CHECK(clock.seconds() < kMaxTime);  // nothing started after ADMM
+    CHECK(independent_error(s) == Approx(s.info.error).epsilon(1e-12));
+  }
+  SECTION("a quick first step: ADMM hands over at its share, Newton finishes") {
+    settings.callback = wait_at(2, 0.45);  // past ADMM's 40 % at its second iteration
+    const Solution s = fcsolve::solve(p, settings);
+    INFO(s.info.message);
+    REQUIRE(s.stages.size() >= 2);
+    CHECK(s.stages[0].solver == "admm-global");
+    CHECK(s.stages[0].iterations == 2);
+    CHECK(s.stages[0].status == "timeout");
+    CHECK(s.stages[1].solver == "nsn-ac-global");
+    CHECK(s.info.converged());
+    CHECK(independent_error(s) <= settings.tol);
+  }
 }

@@ -60,7 +60,8 @@
 // (an elastic body: W dense, d^2 nc^2 entries) forming W costs more than
 // solving, so the plan stays on FC/I, W never formed: ADMM in (v, r)
 // (`admm-global`, at most kNativeAdmmIterations), then semismooth Newton
-// from its iterate (`nsn-ac-global`), then the nonsmooth interior point
+// from its iterate (`nsn-ac-global`; with a finite max_time, only where a
+// Newton step fits: ADMM keeps the time otherwise, AdmmHandover), then the nonsmooth interior point
 // (`nipm`) from scratch for the time left if Newton stalls.
 //
 // Stages switch on iteration counts and measured errors, never on measured
@@ -73,8 +74,9 @@
 // (Plan::continue_sweeps), so does a proximal stage cut by its share
 // while still lowering the error (Plan::robust_tail), and the interior
 // point's share is a soft limit it may overrun while its rate predicts tol
-// (Plan::interior_point): the places where the clock decides, besides the
-// budget's cuts.
+// (Plan::interior_point), and on FC/I ADMM hands over to Newton at its
+// share only where a Newton step fits the rest (AdmmHandover): the places
+// where the clock decides, besides the budget's cuts.
 #pragma once
 
 #include <fcsolve/core/short_number.hpp>
@@ -267,6 +269,50 @@ class InteriorPointCrawl {
   bool fired_ = false;
 };
 
+/// Shares of the time of `auto` on FC/I solved natively
+/// (NativeGlobalPlan): ADMM's first stage, then semismooth Newton.
+inline constexpr double kNativeAdmmShare = 0.4;
+inline constexpr double kNativeNewtonShare = 0.6;
+
+/// Ends the first ADMM stage on FC/I at its share of the time only where
+/// the Newton stage after it could take a step in its own share of the
+/// rest. ADMM's first step (set-up: M factorised, the pattern of
+/// M + rho H H^T analysed; that matrix factorised; one iteration), read at
+/// its first iteration, is a lower bound for a Newton step, whose Jacobian
+/// holds M and H (FactorisationStepCost). Where no Newton step would fit,
+/// ADMM keeps all the time: a second ADMM stage would pay its set-up again.
+/// It also ends the stage at the run's deadline: the stage's max_time
+/// counts from ADMM's solve(), after its set-up (compute(): 0.3 s on an
+/// elastic pair of 1458 contacts, 2.5 s on a block of 10^4, measured).
+class AdmmHandover {
+ public:
+  /// Plan-clock seconds: the stage starts at `now`, its share ends at
+  /// `share_end`, the run's time at `deadline` (+inf: no limit).
+  void start(double now, double share_end, double deadline) {
+    stage_start_ = now;
+    share_end_ = share_end;
+    deadline_ = deadline;
+    first_step_ = -1;
+    fired_ = deadline_reached_ = false;
+  }
+  /// At each iteration, the plan clock's seconds; true: end the stage.
+  bool hands_over(double now) {
+    if (first_step_ < 0) first_step_ = now - stage_start_;
+    if (now >= deadline_) return deadline_reached_ = true;
+    if (now < share_end_) return false;
+    fired_ = !(first_step_ > kNativeNewtonShare * (deadline_ - now));
+    return fired_;
+  }
+  bool fired() const { return fired_; }  ///< ended at its share, for Newton
+  bool deadline_reached() const { return deadline_reached_; }
+  double first_step() const { return first_step_; }
+
+ private:
+  double stage_start_ = 0, share_end_ = 0, deadline_ = 0;
+  double first_step_ = -1;  ///< negative: no iteration seen yet
+  bool fired_ = false, deadline_reached_ = false;
+};
+
 /// What the first step of a factorising stage (semismooth Newton, the
 /// interior point, the proximal point's inner Newton) has cost so far in a
 /// run: its set-up (each stage is a new solve: symbolic analysis, first
@@ -288,6 +334,11 @@ class FactorisationStepCost {
     const double solve = std::min(std::max(info.solve_seconds, 0.0), seconds);
     const double first = (seconds - solve) + solve / std::max(info.iterations, 1);
     if (info.iterations > 0) seconds_ = std::min(seconds_, first);
+  }
+  /// A first step timed as such (set-up to the end of the first iteration,
+  /// AdmmHandover); negative: none.
+  void observe_first_step(double seconds) {
+    if (seconds >= 0) seconds_ = std::min(seconds_, seconds);
   }
   /// Whether one first step fits `budget` seconds (always, before any
   /// stage was measured or without a time limit).
@@ -481,7 +532,7 @@ class StagedRun {
     req.common.max_time = max_time > 0 ? max_time : 1e-9;
     req.common.max_iter = std::max(max_iter, 1);
     req.common.record_history = history || req_.common.record_history;
-    if ((req_.common.callback || watch_crawl_) && !req.common.callback) {
+    if ((req_.common.callback || watch_crawl_ || watch_handover_) && !req.common.callback) {
       // The caller sees one run: iterations and seconds continue across stages.
       // The caller's callback sees every iteration, the one that ends a
       // crawling stage included; its stop is a stop of the whole run.
@@ -492,7 +543,8 @@ class StagedRun {
           whole.seconds = clock_.seconds();
           if (req_.common.callback(whole)) return true;
         }
-        return watch_crawl_ && crawl_.crawls(it.error);
+        return (watch_crawl_ && crawl_.crawls(it.error)) ||
+               (watch_handover_ && handover_.hands_over(clock_.seconds()));
       };
     }
     req.r0 = best_;
@@ -522,6 +574,13 @@ class StagedRun {
       last_status_ = last_.info.status = Status::Stalled;
       why += "; stopped crawling (" + number(100 * kCrawlImprovement) + " % in " + std::to_string(kCrawlWindow) +
              " iterations)";
+    }
+    // Stopped by the handover watch: its share of the time is spent.
+    if (last_status_ == Status::Stopped && watch_handover_ && (handover_.fired() || handover_.deadline_reached())) {
+      last_status_ = last_.info.status = Status::TimeLimit;
+      if (handover_.fired())
+        why += text("; ended at its share of the time: a Newton step, at least ADMM's first (", handover_.first_step(),
+                    " s), fits the rest");
     }
     if (last_status_ == Status::Stopped) stopped_ = true;
     if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
@@ -630,6 +689,10 @@ class StagedRun {
   /// request's callback feeds crawl_, which may stop it.
   bool watch_crawl_ = false;
   InteriorPointCrawl crawl_;
+  /// Set around NativeGlobalPlan's first ADMM stage: its request's
+  /// callback feeds handover_, which may end it at its share of the time.
+  bool watch_handover_ = false;
+  AdmmHandover handover_;
   FactorisationStepCost step_cost_;  ///< the least first step of the factorising stages so far
   double reduced_q_norm_ = -1;  ///< FC/I error scale once a stage computed it
 };
@@ -1006,9 +1069,16 @@ class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
   SolveOutcome run() {
     const std::string why = "nnz(M^-1 H) = " + number(f_.inverse_mass_fill) +
                             " nnz(H): M^-1 couples the dofs, W would be dense; FC/I in (v, r)";
-    stage("admm-global", "admm-global", budget(0.4), std::min(kNativeAdmmIterations, max_iter_left()),
+    // ADMM gets all the time, and ends at its share only where a Newton step
+    // fits the rest (AdmmHandover).
+    handover_.start(clock_.seconds(), clock_.seconds() + budget(kNativeAdmmShare), req_.common.max_time);
+    watch_handover_ = true;
+    stage("admm-global", "admm-global", budget(1.0), std::min(kNativeAdmmIterations, max_iter_left()),
           why + ", one factorisation per rho");
-    step_cost_.observe(last_.info, last_.seconds);
+    watch_handover_ = false;
+    // Timed at its first iteration: the factorisation of M + rho H H^T in
+    // it, not spread over the stage's iterations as observe() would.
+    step_cost_.observe_first_step(handover_.first_step());
     if (done()) return finish();
     // ADMM's first step (compute: M factorised, the pattern of M + rho H H^T
     // analysed; then one iteration) is a lower bound for a Newton step on
@@ -1016,7 +1086,7 @@ class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
     // started (FactorisationStepCost). Measured (docs/results.md,
     // 2026-11-29): an elastic pair of 1458 contacts at max_time 1 s returned
     // after 2.6 s, one Newton step of 1.8 s started with 0.1 s left.
-    if (newton_global(budget(0.6), std::string("admm-global ") + to_string(last_status_) +
+    if (newton_global(budget(kNativeNewtonShare), std::string("admm-global ") + to_string(last_status_) +
                                        ": semismooth Newton from its iterate")) {
       if (done()) return finish();
       if (last_status_ == Status::TimeLimit) {
