@@ -1102,10 +1102,15 @@ class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
       return finish();
     }
     // No Newton step fits: ADMM, whose steps are cheap once factorised, goes
-    // on from its best iterate where its first step fits the time left.
-    if (factorisation_fits("admm-global", "admm-global", budget(1.0), "nothing: the run ends"))
+    // on from its best iterate where its first step fits the time left, to
+    // the run's deadline (its set-up counted: no share to hand over at).
+    if (factorisation_fits("admm-global", "admm-global", budget(1.0), "nothing: the run ends")) {
+      handover_.start(clock_.seconds(), std::numeric_limits<double>::infinity(), req_.common.max_time);
+      watch_handover_ = true;
       stage("admm-global", "admm-global", budget(1.0), max_iter_left(),
             "no Newton step fits the time left: ADMM goes on from its best iterate");
+      watch_handover_ = false;
+    }
     return finish();
   }
 
