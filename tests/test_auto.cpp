@@ -484,6 +484,8 @@ TEST_CASE("auto: FC/I natively, ADMM hands over to Newton only where a Newton st
     CHECK(s.stages[0].solver == "admm-global");
     CHECK(s.stages[0].iterations == 2);
     CHECK(s.stages[0].status == "timeout");
+    // ended by the handover (ADMM's own max_time is the run's, not its share)
+    CHECK(s.stages[0].why.find("ended at its share of the time") != std::string::npos);
     CHECK(s.stages[1].solver == "nsn-ac-global");
     CHECK(s.info.converged());
     CHECK(independent_error(s) <= settings.tol);
