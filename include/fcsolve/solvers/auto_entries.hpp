@@ -61,8 +61,9 @@
 // solving, so the plan stays on FC/I, W never formed: ADMM in (v, r)
 // (`admm-global`, at most kNativeAdmmIterations), then semismooth Newton
 // from its iterate (`nsn-ac-global`; with a finite max_time, only where a
-// Newton step fits: ADMM keeps the time otherwise, AdmmHandover), then the nonsmooth interior point
-// (`nipm`) from scratch for the time left if Newton stalls.
+// Newton step fits: ADMM keeps the time otherwise, AdmmHandover), then the
+// nonsmooth interior point (`nipm`) from scratch for the time left if
+// Newton stalls.
 //
 // Stages switch on iteration counts and measured errors, never on measured
 // times, so a run is deterministic for a given input and settings; the wall
@@ -283,7 +284,7 @@ inline constexpr double kNativeNewtonShare = 0.6;
 /// ADMM keeps all the time: a second ADMM stage would pay its set-up again.
 /// It also ends the stage at the run's deadline: the stage's max_time
 /// counts from ADMM's solve(), after its set-up (compute(): 0.3 s on an
-/// elastic pair of 1458 contacts, 2.5 s on a block of 10^4, measured).
+/// elastic pair of 1458 contacts, 2.2 s on a block of 10^4, measured).
 class AdmmHandover {
  public:
   /// Plan-clock seconds: the stage starts at `now`, its share ends at
@@ -320,9 +321,11 @@ class AdmmHandover {
 /// factorisation cannot be interrupted, so a stage whose first step
 /// outlasts its share of a finite budget overruns it by that step and, cut
 /// after one step, seldom lowers the error: such a stage is not started
-/// and the sweeps that end every plan get its time. Every later
-/// factorising stage factorises a matrix of at least the pattern measured
-/// (W's, or H's and M's on FC/I where W is denser), hence the least.
+/// and its time goes to the plan's cheaper stages (the sweeps on FC/II,
+/// ADMM on FC/I with elastic bodies). Every later factorising stage
+/// factorises a matrix of at least the pattern measured (W's, or H's and
+/// M's on FC/I; on FC/I with elastic bodies ADMM's M + rho H H^T, whose
+/// pattern a Newton Jacobian holds), hence the least.
 /// Measured on a sphere pile of 10^5 contacts with max_time 60 s
 /// (docs/results.md, 2026-11-29): a Newton stage given 15 s took 23 s for
 /// its one step, then the line search's, given about 3 s, took 27 s, and
@@ -575,7 +578,8 @@ class StagedRun {
       why += "; stopped crawling (" + number(100 * kCrawlImprovement) + " % in " + std::to_string(kCrawlWindow) +
              " iterations)";
     }
-    // Stopped by the handover watch: its share of the time is spent.
+    // Stopped by the handover watch: at its share, for Newton, or at the
+    // run's deadline.
     if (last_status_ == Status::Stopped && watch_handover_ && (handover_.fired() || handover_.deadline_reached())) {
       last_status_ = last_.info.status = Status::TimeLimit;
       if (handover_.fired())
