@@ -26,9 +26,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <thread>
 #include <variant>
 #include <vector>
 
@@ -277,4 +279,69 @@ TEST_CASE("settings copied from an entry's cached defaults are independent once 
   CHECK(registry::make_request(e).settings.values() == defaults.values());
   CHECK(registry::SettingValues().values().empty());
   CHECK_THROWS_AS(registry::SettingValues().integer("stall_window"), UsageError);
+}
+
+namespace {
+
+/// Just enough of a solver for registry::compute_within_time: settings and a
+/// compute() that takes at least `setup` (it sleeps).
+struct SlowSetUpSolver {
+  SolverSettings s;
+  int computed = 0;
+  SolverSettings& settings() { return s; }
+  SlowSetUpSolver& compute(const LocalProblemView&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ++computed;
+    return *this;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are charged to it",
+          "[contract][catalogue]") {
+  const LocalProblem p = local_case(3, 1, 0.3, 11);
+  SECTION("compute(): what it took is taken off the solver's max_time") {
+    SlowSetUpSolver solver;
+    solver.s.max_time = 10;
+    registry::compute_within_time(solver, LocalProblemView(p));
+    CHECK(solver.computed == 1);
+    CHECK(solver.s.max_time <= 10 - 0.02);
+    CHECK(solver.s.max_time > 0);
+  }
+  SECTION("a set-up longer than max_time leaves a sliver, still a valid limit") {
+    SlowSetUpSolver solver;
+    solver.s.max_time = 0.01;
+    registry::compute_within_time(solver, LocalProblemView(p));
+    CHECK(solver.s.max_time > 0);
+    CHECK(solver.s.max_time < 1e-6);
+  }
+  SECTION("no limit stays no limit") {
+    SlowSetUpSolver solver;
+    registry::compute_within_time(solver, LocalProblemView(p));
+    CHECK(solver.computed == 1);
+    CHECK(std::isinf(solver.s.max_time));
+  }
+  SECTION("an FC/II entry run on FC/I is given what the reduction left") {
+    const GlobalProblem g = fclib::read_global(fcsolve_test::bundled("GFC3D_Example1.hdf5"));
+    registry::SolverEntry probe("probe", "test", "records the max_time it is given");
+    double given = -1;
+    probe.solve_local = [&given](const LocalProblemView& reduced, const registry::SolveRequest& req) {
+      given = req.common.max_time;
+      registry::SolveOutcome out;
+      out.r = Vector::Zero(reduced.size());
+      out.info.status = Status::MaxIterations;
+      return out;
+    };
+    registry::SolveRequest req = registry::make_request(probe);
+    req.common.max_time = 10;
+    const registry::SolveOutcome out = registry::solve(GlobalProblemView(g), probe, req);
+    CHECK(out.info.status == Status::MaxIterations);
+    CHECK(given < 10);
+    CHECK(given > 9);
+    CHECK(req.common.max_time == 10);  // the caller's request is not modified
+    req.common.max_time = std::numeric_limits<double>::infinity();
+    registry::solve(GlobalProblemView(g), probe, req);
+    CHECK(std::isinf(given));
+  }
 }

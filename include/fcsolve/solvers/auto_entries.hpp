@@ -282,9 +282,9 @@ inline constexpr double kNativeNewtonShare = 0.6;
 /// its first iteration, is a lower bound for a Newton step, whose Jacobian
 /// holds M and H (FactorisationStepCost). Where no Newton step would fit,
 /// ADMM keeps all the time: a second ADMM stage would pay its set-up again.
-/// It also ends the stage at the run's deadline: the stage's max_time
-/// counts from ADMM's solve(), after its set-up (compute(): 0.3 s on an
-/// elastic pair of 1458 contacts, 2.2 s on a block of 10^4, measured).
+/// The run's deadline needs no watch: the stage's max_time counts its
+/// set-up (registry::time_left; compute(): 0.3 s on an elastic pair of 1458
+/// contacts, 2.2 s on a block of 10^4, measured).
 class AdmmHandover {
  public:
   /// Plan-clock seconds: the stage starts at `now`, its share ends at
@@ -294,24 +294,22 @@ class AdmmHandover {
     share_end_ = share_end;
     deadline_ = deadline;
     first_step_ = -1;
-    fired_ = deadline_reached_ = false;
+    fired_ = false;
   }
   /// At each iteration, the plan clock's seconds; true: end the stage.
   bool hands_over(double now) {
     if (first_step_ < 0) first_step_ = now - stage_start_;
-    if (now >= deadline_) return deadline_reached_ = true;
     if (now < share_end_) return false;
     fired_ = !(first_step_ > kNativeNewtonShare * (deadline_ - now));
     return fired_;
   }
   bool fired() const { return fired_; }  ///< ended at its share, for Newton
-  bool deadline_reached() const { return deadline_reached_; }
   double first_step() const { return first_step_; }
 
  private:
   double stage_start_ = 0, share_end_ = 0, deadline_ = 0;
   double first_step_ = -1;  ///< negative: no iteration seen yet
-  bool fired_ = false, deadline_reached_ = false;
+  bool fired_ = false;
 };
 
 /// What the first step of a factorising stage (semismooth Newton, the
@@ -578,13 +576,11 @@ class StagedRun {
       why += "; stopped crawling (" + number(100 * kCrawlImprovement) + " % in " + std::to_string(kCrawlWindow) +
              " iterations)";
     }
-    // Stopped by the handover watch: at its share, for Newton, or at the
-    // run's deadline.
-    if (last_status_ == Status::Stopped && watch_handover_ && (handover_.fired() || handover_.deadline_reached())) {
+    // Stopped by the handover watch at its share of the time, for Newton.
+    if (last_status_ == Status::Stopped && watch_handover_ && handover_.fired()) {
       last_status_ = last_.info.status = Status::TimeLimit;
-      if (handover_.fired())
-        why += text("; ended at its share of the time: a Newton step, at least ADMM's first (", handover_.first_step(),
-                    " s), fits the rest");
+      why += text("; ended at its share of the time: a Newton step, at least ADMM's first (", handover_.first_step(),
+                  " s), fits the rest");
     }
     if (last_status_ == Status::Stopped) stopped_ = true;
     if (std::isfinite(last_.info.error) && last_.info.error < best_error_) {
@@ -1108,13 +1104,9 @@ class NativeGlobalPlan : private StagedRun<GlobalProblemView> {
     // No Newton step fits: ADMM, whose steps are cheap once factorised, goes
     // on from its best iterate where its first step fits the time left, to
     // the run's deadline (its set-up counted: no share to hand over at).
-    if (factorisation_fits("admm-global", "admm-global", budget(1.0), "nothing: the run ends")) {
-      handover_.start(clock_.seconds(), std::numeric_limits<double>::infinity(), req_.common.max_time);
-      watch_handover_ = true;
+    if (factorisation_fits("admm-global", "admm-global", budget(1.0), "nothing: the run ends"))
       stage("admm-global", "admm-global", budget(1.0), max_iter_left(),
             "no Newton step fits the time left: ADMM goes on from its best iterate");
-      watch_handover_ = false;
-    }
     return finish();
   }
 

@@ -93,7 +93,8 @@ SolverInfo run_ipm(IpmKind kind, const View& p, const SolveRequest& req, SolveOu
   if constexpr (Form::is_global) w.setZero(p.num_dofs());
   else w.setZero(p.size());
   auto run = [&](auto& solver) {
-    const SolverInfo& info = solver.compute(p).solve(out.r, w);
+    compute_within_time(solver, p);
+    const SolverInfo& info = solver.solve(out.r, w);
     if constexpr (Form::is_global)  // the registry need not factorise M again
       out.reduced_q_norm = solver.form().free_velocity_norm();
     return info;

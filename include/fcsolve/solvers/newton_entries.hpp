@@ -48,7 +48,7 @@ SolveOutcome run(const View& p, const SolveRequest& req, bool hybrid, Vector Sol
                  Index second_size) {
   static_assert(satisfies_solver_contract_v<Solver, View>);
   Solver solver(newton_settings(req, hybrid));
-  solver.compute(p);
+  compute_within_time(solver, p);
   SolveOutcome out;
   out.r = initial_reactions(req, p.size());
   (out.*second).resize(second_size);

@@ -98,7 +98,7 @@ SolveOutcome run(const LocalProblemView& view, const SolveRequest& req, const Co
   static_assert(satisfies_solver_contract_v<Solver, LocalProblemView>);
   Solver solver;
   read_settings(req, configure, solver.settings());
-  solver.compute(view);
+  compute_within_time(solver, view);
   SolveOutcome out;
   out.r = initial_reactions(req, view.size());
   out.u.resize(view.size());
