@@ -117,6 +117,28 @@ TEST_CASE("fcsolve::solve: one contact, closed forms, local and global", "[auto]
   }
 }
 
+TEST_CASE("auto: with no solution and no time limit, the last sweeps stop on a plateau", "[auto]") {
+  // Two contacts whose normals are coupled by [[1, -1], [-1, 1]], q_N = -1:
+  // u_N1 + u_N2 = -2 whatever r, no solution. Every stage fails; the sweeps
+  // that end the plan used to go on to max_iter (10^6).
+  DenseMatrix W = DenseMatrix::Identity(6, 6);
+  W(0, 3) = W(3, 0) = -1;
+  Vector q = Vector::Zero(6);
+  q[0] = q[3] = -1;
+  const LocalProblem p = local_problem(W, q, 0.5);
+  const Solution s = fcsolve::solve(p);
+  INFO(s.info.message);
+  CHECK_FALSE(s.info.converged());
+  CHECK(s.info.status == Status::Stalled);
+  CHECK(s.info.iterations < 200000);
+  REQUIRE_FALSE(s.stages.empty());
+  const auto& last = s.stages.back();
+  CHECK(last.solver == "nsgs");
+  CHECK(last.status == to_string(Status::Stalled));
+  CHECK(last.why.find("the rest of the budget") != std::string::npos);
+  CHECK(s.info.error == Approx(local_error(p, s.r)).epsilon(1e-10));
+}
+
 TEST_CASE("auto: strongly coupled contacts, closed form, Newton takes over", "[auto][closed-form]") {
   const CoupledPairs pairs(6, 0.999);  // 12 contacts: not left to NSGS alone
   SolveSettings settings;

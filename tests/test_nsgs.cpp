@@ -380,6 +380,32 @@ TEST_CASE("nsgs fails cleanly when a contact has no solution", "[nsgs]") {
   CHECK(nsgs.info().error == Approx(local_error(p, r)).epsilon(1e-10));
 }
 
+TEST_CASE("nsgs gives up on a plateau only when asked (give_up_sweeps)", "[nsgs]") {
+  // Frictionless, u_1 + u_2 = -2 whatever r >= 0: no solution. Each sweep
+  // adds 2 to r, the error stays where it is.
+  const LocalProblem p = fcsolve_test::make_local(1, (DenseMatrix(2, 2) << 1, -1, -1, 1).finished(),
+                                                  Vector::Constant(2, -1), Vector::Zero(2));
+  Nsgs<Frictionless, BlockSparseStorage<1>, local::Projection<Frictionless>> nsgs;
+  nsgs.settings().max_iter = 1000;
+  nsgs.settings().stall_sweeps = 20;
+  nsgs.settings().error_every = 1;
+  SECTION("by default it sweeps to max_iter") {
+    solve_with(nsgs, p);
+    CHECK(nsgs.info().status == Status::MaxIterations);
+    CHECK(nsgs.info().iterations == 1000);
+  }
+  SECTION("asked, it stops after the reshuffle and that many sweeps more") {
+    nsgs.settings().give_up_sweeps = 30;
+    const Vector r = solve_with(nsgs, p);
+    INFO(nsgs.info().message);
+    CHECK(nsgs.info().status == Status::Stalled);
+    CHECK(nsgs.info().iterations >= 50);
+    CHECK(nsgs.info().iterations <= 60);
+    CHECK(nsgs.info().message.find("sweeps after the reshuffle") != std::string::npos);
+    CHECK(nsgs.info().error == Approx(local_error(p, r)).epsilon(1e-10));
+  }
+}
+
 TEST_CASE("catalogue: nsgs reads a request's settings again whenever they change", "[nsgs][registry]") {
   // The entry keeps what it read from the last settings map it saw (a hot
   // loop, auto's stages); a change made in place after a solve must still

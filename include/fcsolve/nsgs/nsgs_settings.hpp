@@ -45,6 +45,11 @@ struct NsgsSettings : SolverSettings {
   /// can fall into a cycle that a new order each sweep breaks (Coloured:
   /// the order of the colours is reshuffled instead). 0: never.
   int stall_sweeps = 5000;
+  /// After that reshuffle: stop (Stalled) when this many more sweeps have not
+  /// improved the best full error by 1%: at that pace one more decade of
+  /// error takes 230 times as many sweeps. 0: never (sweep to max_iter or
+  /// max_time).
+  int give_up_sweeps = 0;
   /// Full FCLIB error at least every `error_every` sweeps; in between, a
   /// cheap test on ||r_{k+1} - r_k|| decides whether a full error is worth
   /// computing. Success is only ever declared on a full error.

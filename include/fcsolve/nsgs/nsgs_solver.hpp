@@ -531,6 +531,9 @@ class Nsgs {
       progress.sweep = sweep_no;
       note(std::string("no progress: ") + (s.ordering == ContactOrdering::Coloured ? "colours" : "contacts") +
            " reshuffled every sweep from sweep " + std::to_string(sweep_no));
+    } else if (progress.reshuffle && s.give_up_sweeps > 0 && sweep_no - progress.sweep >= s.give_up_sweeps) {
+      note("no 1% progress in " + std::to_string(sweep_no - progress.sweep) + " sweeps after the reshuffle");
+      return Status::Stalled;
     }
     if (sw.skipped > 0 && change * ratio <= s.tol) {
       // converged on the visited contacts only: check the frozen ones

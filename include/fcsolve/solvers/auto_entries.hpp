@@ -114,6 +114,12 @@ namespace auto_detail {
 inline constexpr Index kTinyContacts = 8;
 /// Sweeps NSGS gets on them before the robust tail (a few ms at that size).
 inline constexpr int kTinySweeps = 20000;
+/// The sweeps that end the plan stop on a plateau: NSGS' give_up_sweeps,
+/// after its own reshuffle at stall_sweeps (both 5000: about 0.5 s of
+/// sweeps on 1000 contacts). Measured (docs/results.md, 2026-11-29): on a
+/// heavy-on-light stack nobody here solves, without a time limit, they swept
+/// to max_iter (10^6) at 5.3e-3: 91 s of a 146-s run.
+inline constexpr int kFinalSweepsGiveUp = 5000;
 /// Warm-start sweeps (two full errors with NSGS' error_every = 10).
 inline constexpr int kWarmSweeps = 20;
 /// NSGS continues after the warm start if its rate predicts tol within an
@@ -1051,6 +1057,7 @@ class Plan : private StagedRun<LocalProblemView> {
         if (done()) return finish();
       }
     }
+    stage_request("nsgs", nullptr, 0).req.settings.set("give_up_sweeps", (long long)kFinalSweepsGiveUp);
     stage("nsgs", "nsgs", budget(1.0), max_iter_left(), "the rest of the budget to the robust sweeps");
     return finish();
   }

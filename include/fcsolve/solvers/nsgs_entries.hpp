@@ -42,6 +42,10 @@ inline std::vector<SettingSpec> common_settings(double omega) {
       integer_setting("stall_sweeps", d.stall_sweeps,
                       "reshuffle every sweep after this many sweeps without 1% progress (0: never)",
                       0, 1e9),
+      integer_setting("give_up_sweeps", d.give_up_sweeps,
+                      "after that reshuffle, stop (stalled) after this many sweeps without 1% "
+                      "progress (0: never)",
+                      0, 1e9),
       integer_setting("error_every", d.error_every, "full error at least every k sweeps", 1, 1e9),
       integer_setting("freezing", d.freezing,
                       "skip a contact for k sweeps once its local solution stops moving (0: off)",
@@ -63,6 +67,7 @@ void apply_common(const SolveRequest& req, Settings& s) {
   s.seed = static_cast<std::uint32_t>(v.integer("seed"));
   s.threads = static_cast<int>(v.integer("threads"));
   s.stall_sweeps = static_cast<int>(v.integer("stall_sweeps"));
+  s.give_up_sweeps = static_cast<int>(v.integer("give_up_sweeps"));
   s.error_every = static_cast<int>(v.integer("error_every"));
   s.freezing = static_cast<int>(v.integer("freezing"));
   s.extrapolate = v.boolean("extrapolate");
