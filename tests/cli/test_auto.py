@@ -120,11 +120,16 @@ def test_auto_solves_every_shared_problem(problem, tmp_path):
 
 
 def test_max_time_is_honoured_without_a_false_convergence(tmp_path):
-    # 1e-30 is below round-off: every stage runs until the budget is spent.
+    # 1e-30 is below round-off: no stage converges; the run ends when the
+    # budget is spent or, at round-off, when its last sweeps stop on their
+    # plateau (stalled).
     problem = BUNDLED / "Capsules-i101-404.hdf5"
     sol = tmp_path / "sol.hdf5"
     code, res = solve_json(problem, "--tol", "1e-30", "--max-time", 0.5, out=sol)
-    assert code == 1 and res["status"] == "timeout" and not res["converged"], res
+    assert code == 1 and res["status"] in ("timeout", "stalled") and not res["converged"], res
+    if res["status"] == "stalled":
+        last = res["stages"][-1]
+        assert last["solver"] == "nsgs" and last["status"] == "stalled", last
     # a generous bound (a loaded machine): the budget cuts the run, not an iteration cap
     assert res["seconds"] < 5, res
     check_stages(res)
