@@ -344,4 +344,23 @@ TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are ch
     registry::solve(GlobalProblemView(g), probe, req);
     CHECK(std::isinf(given));
   }
+  SECTION("a native FC/I entry that reduces bilateral constraints itself gives what the reduction left") {
+    const GlobalProblem g = bilateral_case(0.3);
+    registry::SolveRequest req;
+    req.common.max_time = 10;
+    double given = -1;
+    const auto probe = [&given](const LocalProblemView& reduced, const registry::SolveRequest& within) {
+      given = within.common.max_time;
+      registry::SolveOutcome out;
+      out.r = Vector::Zero(reduced.size());
+      return out;
+    };
+    const registry::SolveOutcome out = registry::solve_bilateral_by_reduction(GlobalProblemView(g), req, probe);
+    CHECK(out.lambda.size() == 1);  // reduced, and the multiplier recovered
+    CHECK(given < 10);
+    CHECK(given > 9);
+    req.common.max_time = std::numeric_limits<double>::infinity();
+    registry::solve_bilateral_by_reduction(GlobalProblemView(g), req, probe);
+    CHECK(std::isinf(given));
+  }
 }

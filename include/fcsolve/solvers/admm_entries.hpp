@@ -48,8 +48,9 @@ inline SolveOutcome solve_admm_local(const LocalProblemView& p, const SolveReque
 /// registry's reduction to admm (AdmmGlobal does not handle G, b).
 inline SolveOutcome solve_admm_global(const GlobalProblemView& p, const SolveRequest& req) {
   if (p.has_bilateral())
-    return solve_bilateral_by_reduction(
-        p, [&](const LocalProblemView& reduced) { return solve_admm_local(reduced, req, false); });
+    return solve_bilateral_by_reduction(p, req, [](const LocalProblemView& reduced, const SolveRequest& within) {
+      return solve_admm_local(reduced, within, false);
+    });
   return dispatch_cone(p.d, [&](auto cone) {
     using Solver = AdmmGlobal<decltype(cone)>;
     static_assert(satisfies_solver_contract_v<Solver, GlobalProblemView>);

@@ -174,9 +174,10 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
     require_friction(p.d);
     SolveOutcome out;
     if (p.has_bilateral())  // the global form has no (G, b)
-      return solve_bilateral_by_reduction(p, [&](const LocalProblemView& reduced) {
-        return ipm_local(kind)(reduced, req);
-      });
+      return solve_bilateral_by_reduction(
+          p, req, [kind](const LocalProblemView& reduced, const SolveRequest& within) {
+            return ipm_local(kind)(reduced, within);
+          });
     const bool dense = p.num_dofs() + p.size() <= kDenseKktMaxSize;
     dispatch_ipm_form<ipm::GlobalForm>(p.d, dense, [&](auto form) {
       out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out);

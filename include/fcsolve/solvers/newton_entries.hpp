@@ -75,8 +75,8 @@ template <template <class> class F>
 GlobalSolveFunction global_solver() {
   return [](const GlobalProblemView& p, const SolveRequest& req) {
     if (p.has_bilateral())
-      return solve_bilateral_by_reduction(p, [&](const LocalProblemView& reduced) {
-        return reduced_solver<F>(false)(reduced, req);
+      return solve_bilateral_by_reduction(p, req, [](const LocalProblemView& reduced, const SolveRequest& within) {
+        return reduced_solver<F>(false)(reduced, within);
       });
     return dispatch_cone(p.d, [&](auto cone) {
       using Solver = GlobalNewton<F, decltype(cone)>;

@@ -89,8 +89,8 @@ using NsgsInner = Nsgs<Cone, Storage>;
 inline GlobalSolveFunction global_solver() {
   return [](const GlobalProblemView& p, const SolveRequest& req) {
     if (p.has_bilateral())
-      return solve_bilateral_by_reduction(p, [&](const LocalProblemView& reduced) {
-        return solver<NewtonInner, SparseStorage>()(reduced, req);
+      return solve_bilateral_by_reduction(p, req, [](const LocalProblemView& reduced, const SolveRequest& within) {
+        return solver<NewtonInner, SparseStorage>()(reduced, within);
       });
     return dispatch_cone(p.d, [&](auto cone) {
       using Solver = ProximalPointGlobal<decltype(cone)>;

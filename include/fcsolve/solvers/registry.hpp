@@ -101,6 +101,28 @@ struct SolverEntry {
   bool solves_global_natively() const { return bool(solve_global); }
 };
 
+/// The catalogue's time rule: a request's max_time counts from the start of
+/// the call, its set-up included (a reduction to FC/II, compute()'s
+/// factorisations), so that a caller asking for T seconds has the answer
+/// within T and at most one iteration, whatever the set-up costs (issue 13:
+/// admm-global asked for 2.5 s on an elastic block of 10^4 contacts
+/// returned after 4.7-5.2 s, 2.2 s of them factorising M before its clock
+/// started). Returns what is left of `max_time` after `spent` seconds; when
+/// nothing is, a sliver, so that the solver still returns its start's error
+/// after at most one iteration.
+inline double time_left(double max_time, double spent) {
+  constexpr double kLeastTimeLeft = 1e-9;  // > 0: every solver rejects max_time <= 0
+  return std::isfinite(max_time) ? std::max(max_time - spent, kLeastTimeLeft) : max_time;
+}
+
+/// `req` with what is left of its max_time after the time on `since`: what
+/// a solve run after a set-up of its own (a reduction) is given.
+inline SolveRequest within_time(const SolveRequest& req, const Stopwatch& since) {
+  SolveRequest within = req;
+  within.common.max_time = time_left(req.common.max_time, since.seconds());
+  return within;
+}
+
 /// FC/I through FC/II: reduces p (W = H^T M^-1 H, q; problem/reduction.hpp),
 /// runs `solve_reduced(LocalProblemView)` and recovers v (and lambda when p
 /// has bilateral constraints). The outcome keeps the error scale
@@ -121,10 +143,17 @@ SolveOutcome solve_by_reduction(const GlobalProblemView& p, SolveReduced&& solve
 }
 
 /// solve_by_reduction() for a native FC/I entry that cannot take (G, b):
-/// the message says the reduced form was solved.
+/// `solve_reduced(reduced, within)` gets `req` with what the reduction left
+/// of its max_time (within_time); the message says the reduced form was
+/// solved.
 template <class SolveReduced>
-SolveOutcome solve_bilateral_by_reduction(const GlobalProblemView& p, SolveReduced&& solve_reduced) {
-  SolveOutcome out = solve_by_reduction(p, std::forward<SolveReduced>(solve_reduced));
+SolveOutcome solve_bilateral_by_reduction(const GlobalProblemView& p, const SolveRequest& req,
+                                          SolveReduced&& solve_reduced) {
+  const Stopwatch clock;
+  SolveOutcome out = solve_by_reduction(p, [&](const LocalProblemView& reduced) {
+    if (!std::isfinite(req.common.max_time)) return solve_reduced(reduced, req);
+    return solve_reduced(reduced, within_time(req, clock));
+  });
   out.info.message = "bilateral constraints: solved in the reduced form" +
                      (out.info.message.empty() ? std::string() : "; " + out.info.message);
   return out;
@@ -133,20 +162,6 @@ SolveOutcome solve_bilateral_by_reduction(const GlobalProblemView& p, SolveReduc
 /// The starting reactions of a solve: the request's warm start, else zero.
 inline Vector initial_reactions(const SolveRequest& req, Index size) {
   return req.r0.size() ? req.r0 : Vector(Vector::Zero(size));
-}
-
-/// The catalogue's time rule: a request's max_time counts from the start of
-/// the call, its set-up included (a reduction to FC/II, compute()'s
-/// factorisations), so that a caller asking for T seconds has the answer
-/// within T and at most one iteration, whatever the set-up costs (issue 13:
-/// admm-global asked for 2.5 s on an elastic block of 10^4 contacts
-/// returned after 4.7 s, 2.2 s of them factorising M before its clock
-/// started). Returns what is left of `max_time` after `spent` seconds; when
-/// nothing is, a sliver, so that the solver still returns its start's error
-/// after at most one iteration.
-inline double time_left(double max_time, double spent) {
-  constexpr double kLeastTimeLeft = 1e-9;  // > 0: every solver rejects max_time <= 0
-  return std::isfinite(max_time) ? std::max(max_time - spent, kLeastTimeLeft) : max_time;
 }
 
 /// solver.compute(p), its time charged to the solver's max_time (time_left);
@@ -310,9 +325,7 @@ SolveOutcome run_checked(const GlobalProblemView& p, const SolverEntry& e, const
       Stopwatch inner;
       validate(reduced);
       if (!std::isfinite(req.common.max_time)) return run_checked(reduced, e, req, inner);
-      SolveRequest within = req;  // the reduction's time is the caller's too (time_left)
-      within.common.max_time = time_left(req.common.max_time, clock.seconds());
-      return run_checked(reduced, e, within, inner);
+      return run_checked(reduced, e, within_time(req, clock), inner);  // the reduction's time counts
     });
   }
   check_returned(out.r, p.size(), e.name, "r");
