@@ -284,7 +284,7 @@ TEST_CASE("settings copied from an entry's cached defaults are independent once 
 namespace {
 
 /// Just enough of a solver for registry::compute_within_time: settings and a
-/// compute() that takes at least `setup` (it sleeps).
+/// compute() that takes at least 20 ms (it sleeps).
 struct SlowSetUpSolver {
   SolverSettings s;
   int computed = 0;
@@ -339,7 +339,6 @@ TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are ch
     CHECK(out.info.status == Status::MaxIterations);
     CHECK(given < 10);
     CHECK(given > 9);
-    CHECK(req.common.max_time == 10);  // the caller's request is not modified
     req.common.max_time = std::numeric_limits<double>::infinity();
     registry::solve(GlobalProblemView(g), probe, req);
     CHECK(std::isinf(given));
