@@ -112,6 +112,26 @@ GlobalProblem bilateral_case(double b) {
   return g;
 }
 
+/// An elastic body (M^-1 dense: one 30-dof block, above
+/// kMaxDenseInverseBlock) with 70 contacts: W's 210 columns span two of the
+/// reduction's blocks of columns.
+GlobalProblem elastic_case() {
+  GlobalProblem g;
+  g.d = 3;
+  const Index n = 30, nc = 70, m = 3 * nc;
+  g.M = spd(n, 21).sparseView();
+  std::srand(22);
+  DenseMatrix H = DenseMatrix::Zero(n, m);
+  for (Index j = 0; j < m; ++j)
+    for (Index k = 0; k < 3; ++k) H((j * 7 + k * 11) % n, j) = 1 + 0.5 * double(std::rand() % 100) / 100;
+  g.H = H.sparseView();
+  g.f = -Vector::Ones(n);
+  g.w = Vector::Zero(m);
+  g.mu = Vector::Constant(nc, 0.3);
+  for (auto* A : {&g.M, &g.H}) A->makeCompressed();
+  return g;
+}
+
 std::vector<Case> contract_cases() {
   std::vector<Case> cases;
   cases.push_back({"Rover1039 (3D)", fclib::read_local(fcsolve_test::bundled("Rover1039.hdf5"))});
@@ -342,6 +362,34 @@ TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are ch
     req.common.max_time = std::numeric_limits<double>::infinity();
     registry::solve(GlobalProblemView(g), probe, req);
     CHECK(std::isinf(given));
+  }
+  SECTION("an elastic body's W is formed by blocks within a limit, and given up once it is spent") {
+    const GlobalProblem g = elastic_case();
+    const GlobalReduction<> at_once(g), by_blocks(g, /*form_W=*/true, 1e9), given_up(g, true, 1e-12);
+    REQUIRE(at_once.formed_W());
+    REQUIRE(by_blocks.formed_W());
+    CHECK((at_once.local().W - by_blocks.local().W).norm() <= 1e-13 * at_once.local().W.norm());
+    CHECK(!given_up.formed_W());
+    CHECK(given_up.local().W.size() == 0);
+    CHECK((given_up.local().q - at_once.local().q).norm() <= 1e-13 * at_once.local().q.norm());
+    const Vector r = Vector::Constant(g.H.cols(), 0.1);
+    CHECK((given_up.velocity(r) - at_once.velocity(r)).norm() <= 1e-13 * at_once.velocity(r).norm());
+  }
+  SECTION("an FC/II entry on FC/I whose reduction outlasts max_time returns its start, no iteration") {
+    const GlobalProblem g = elastic_case();
+    registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find("nsgs"));
+    req.common.max_time = 1e-9;
+    const registry::SolveOutcome out = fcsolve_test::solve_named(GlobalProblemView(g), "nsgs", req);
+    CHECK(out.info.status == Status::TimeLimit);
+    CHECK(out.info.iterations == 0);
+    CHECK(out.r.isZero(0));
+    CHECK(out.info.message.find("forming W") != std::string::npos);
+    CHECK(std::isfinite(out.info.error));
+    CHECK((g.M * out.v - g.f).norm() <= 1e-12 * g.f.norm());  // v balances the start r = 0
+    req.common.max_time = 10;  // the same entry, given time, solves it
+    const registry::SolveOutcome solved = fcsolve_test::solve_named(GlobalProblemView(g), "nsgs", req);
+    CHECK(solved.info.iterations > 0);
+    CHECK(solved.info.error < out.info.error);
   }
   SECTION("a native FC/I entry that reduces bilateral constraints itself gives what the reduction left") {
     const GlobalProblem g = bilateral_case(0.3);
