@@ -5,7 +5,10 @@
 # --max-time 20) as FC/II (-local) and FC/I, and the returned solution's
 # error recomputed by ../shared/tools/fcref.py.
 #   bash docs/measurements/heldout-scenes-2026-11-28.sh [FCSOLVE] [OUTDIR]
-# Columns: file, exit code, status, solver, iterations, error, seconds | fcref.
+#   ROUND=2 bash ...: the second round (2026-11-29), seeds 401-420, other
+#   parameter sets, never used for tuning either.
+# Columns: file, wall seconds (process), exit code, status, solver,
+# iterations, error, seconds | fcref.
 set -u
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 FCREF=${FCREF:-$ROOT/../shared/tools/fcref.py}  # beside the checkout, as in CI
@@ -22,19 +25,30 @@ SPECS=(
   "wall 200 0.2 1 0.2 201" "wall 800 0.2 1 0.05 202" "wall 3000 0.5 1 0 203" "tower 2000 2.0 1 0.2 204"
   "heavy-on-light 300 1.0 10000 0.1 205" "box-stack 1000 0.6 100 0 206" "box-stack 50 2.0 10000 0.2 207"
   "sphere-pile 5000 0.3 1 0.1 208" "fem-block 1000 0.3 1 0 209" "fem-two-bodies 1000 1.0 1 0 210")
+if [[ "${ROUND:-1}" == 2 ]]; then
+  SPECS=(
+    "sphere-pile 120 0.8 1 0.1 401" "sphere-pile 1200 0.4 1 0 402" "sphere-pile 3000 1.0 1 0.05 403"
+    "box-stack 30 1.2 1 0.1 404" "box-stack 600 0.5 1000 0 405" "wall 300 1.5 1 0 406" "wall 1500 0.6 1 0.1 407"
+    "tower 150 0.4 1 0.1 408" "tower 1000 1.2 1 0 409" "heavy-on-light 40 0.7 5000 0 410"
+    "heavy-on-light 600 0.3 10000 0.05 411" "fem-block 200 0.9 1 0 412" "fem-block 700 0.2 1 0 413"
+    "fem-two-bodies 200 0.6 1 0 414" "fem-two-bodies 600 1.5 1 0 415" "sphere-pile 10 0.3 1 0 416"
+    "box-stack 4 0.5 1 0 417" "wall 50 2.0 1 0.2 418" "tower 4000 0.8 1 0.05 419" "sphere-pile 600 0.0 1 0.1 420")
+fi
 for spec in "${SPECS[@]}"; do
   set -- $spec
   base="$OUT/$1-$2-s$6"
   "$B" generate "$1" --contacts "$2" --mu "$3" --mass-ratio "$4" --penetration-correction "$5" --seed "$6" \
     --out "$base.hdf5" --local-out "$base-local.hdf5" > /dev/null 2>&1 || { echo "generate failed: $spec"; continue; }
   for p in "$base-local.hdf5" "$base.hdf5"; do
+    t0=$(date +%s.%N)
     out=$(timeout 60 "$B" solve "$p" --tol 1e-8 --max-time 20 --json --out "${p%.hdf5}-sol.hdf5" 2>&1); rc=$?
+    wall=$(python3 -c "import sys; print('%.2f' % ($(date +%s.%N) - $t0))")
     st=$(echo "$out" | python3 -c "import sys, json; d = json.load(sys.stdin); print(d['status'], d['solver'], d['iterations'], '%.2e' % d['error'], '%.3f' % d['seconds'])" 2>/dev/null)
     if [[ -f "$FCREF" ]]; then
       ref=$(OPENBLAS_NUM_THREADS=1 /usr/bin/python3 "$FCREF" "$p" "${p%.hdf5}-sol.hdf5" 2>&1 | tail -1)
     else
       ref="not checked ($FCREF not found; set FCREF)"
     fi
-    echo "$(basename "$p") rc=$rc $st | fcref: $ref"
+    echo "$(basename "$p") wall=$wall rc=$rc $st | fcref: $ref"
   done
 done
