@@ -132,6 +132,38 @@ GlobalProblem elastic_case() {
   return g;
 }
 
+/// elastic_case() with one bilateral constraint: W comes from the
+/// saddle-point matrix K, by blocks of columns under a time limit too.
+GlobalProblem elastic_bilateral_case() {
+  GlobalProblem g = elastic_case();
+  DenseMatrix G = DenseMatrix::Zero(g.M.rows(), 1);
+  G(1, 0) = 1;
+  G(4, 0) = -1;
+  g.G = G.sparseView();
+  g.G.makeCompressed();
+  g.b = Vector::Constant(1, 0.1);
+  return g;
+}
+
+/// Entry `name` on g (an elastic body) asked for 1e-9 s: forming W outlasts
+/// it, so the run returns its start (r = 0), timeout, no iteration, a finite
+/// error; given 10 s the same entry iterates and lowers that error.
+registry::SolveOutcome check_start_returned_when_W_outlasts(const GlobalProblem& g, const std::string& name) {
+  registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find(name));
+  req.common.max_time = 1e-9;
+  const registry::SolveOutcome out = fcsolve_test::solve_named(GlobalProblemView(g), name, req);
+  CHECK(out.info.status == Status::TimeLimit);
+  CHECK(out.info.iterations == 0);
+  CHECK(out.r.isZero(0));
+  CHECK(out.info.message.find("forming W") != std::string::npos);
+  CHECK(std::isfinite(out.info.error));
+  req.common.max_time = 10;
+  const registry::SolveOutcome solved = fcsolve_test::solve_named(GlobalProblemView(g), name, req);
+  CHECK(solved.info.iterations > 0);
+  CHECK(solved.info.error < out.info.error);
+  return out;
+}
+
 std::vector<Case> contract_cases() {
   std::vector<Case> cases;
   cases.push_back({"Rover1039 (3D)", fclib::read_local(fcsolve_test::bundled("Rover1039.hdf5"))});
@@ -364,32 +396,33 @@ TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are ch
     CHECK(std::isinf(given));
   }
   SECTION("an elastic body's W is formed by blocks within a limit, and given up once it is spent") {
-    const GlobalProblem g = elastic_case();
-    const GlobalReduction<> at_once(g), by_blocks(g, /*form_W=*/true, 1e9), given_up(g, true, 1e-12);
-    REQUIRE(at_once.formed_W());
-    REQUIRE(by_blocks.formed_W());
-    CHECK((at_once.local().W - by_blocks.local().W).norm() <= 1e-13 * at_once.local().W.norm());
-    CHECK(!given_up.formed_W());
-    CHECK(given_up.local().W.size() == 0);
-    CHECK((given_up.local().q - at_once.local().q).norm() <= 1e-13 * at_once.local().q.norm());
-    const Vector r = Vector::Constant(g.H.cols(), 0.1);
-    CHECK((given_up.velocity(r) - at_once.velocity(r)).norm() <= 1e-13 * at_once.velocity(r).norm());
+    for (const GlobalProblem& g : {elastic_case(), elastic_bilateral_case()}) {  // M^-1; K^-1 (with G)
+      const GlobalReduction<> no_limit(g), by_blocks(g, /*form_W=*/true, 1e9), given_up(g, true, 1e-12);
+      REQUIRE(no_limit.formed_W());
+      REQUIRE(by_blocks.formed_W());
+      // W = H^T (K^-1 [H; 0])_v densely, K = [M -G; G^T 0] (problem/reduction.hpp)
+      const Index n = g.M.rows(), k = g.G.cols();
+      DenseMatrix K = DenseMatrix::Zero(n + k, n + k), B = DenseMatrix::Zero(n + k, g.H.cols());
+      K.topLeftCorner(n, n) = DenseMatrix(g.M);
+      K.topRightCorner(n, k) = -DenseMatrix(g.G);
+      K.bottomLeftCorner(k, n) = DenseMatrix(g.G).transpose();
+      B.topRows(n) = DenseMatrix(g.H);
+      const DenseMatrix W = DenseMatrix(g.H.transpose()) * DenseMatrix(K.lu().solve(B).topRows(n));
+      CHECK((DenseMatrix(no_limit.local().W) - W).norm() <= 1e-12 * W.norm());
+      CHECK((no_limit.local().W - by_blocks.local().W).norm() <= 1e-13 * no_limit.local().W.norm());
+      CHECK(!given_up.formed_W());
+      CHECK(given_up.local().W.size() == 0);
+      CHECK((given_up.local().q - no_limit.local().q).norm() <= 1e-13 * no_limit.local().q.norm());
+      const Vector r = Vector::Constant(g.H.cols(), 0.1);
+      CHECK((given_up.velocity(r) - no_limit.velocity(r)).norm() <= 1e-13 * no_limit.velocity(r).norm());
+      if (g.has_bilateral())
+        CHECK((given_up.multipliers(r) - no_limit.multipliers(r)).norm() <= 1e-12 * no_limit.multipliers(r).norm());
+    }
   }
   SECTION("an FC/II entry on FC/I whose reduction outlasts max_time returns its start, no iteration") {
     const GlobalProblem g = elastic_case();
-    registry::SolveRequest req = registry::make_request(fcsolve_test::catalogue_find("nsgs"));
-    req.common.max_time = 1e-9;
-    const registry::SolveOutcome out = fcsolve_test::solve_named(GlobalProblemView(g), "nsgs", req);
-    CHECK(out.info.status == Status::TimeLimit);
-    CHECK(out.info.iterations == 0);
-    CHECK(out.r.isZero(0));
-    CHECK(out.info.message.find("forming W") != std::string::npos);
-    CHECK(std::isfinite(out.info.error));
+    const registry::SolveOutcome out = check_start_returned_when_W_outlasts(g, "nsgs");
     CHECK((g.M * out.v - g.f).norm() <= 1e-12 * g.f.norm());  // v balances the start r = 0
-    req.common.max_time = 10;  // the same entry, given time, solves it
-    const registry::SolveOutcome solved = fcsolve_test::solve_named(GlobalProblemView(g), "nsgs", req);
-    CHECK(solved.info.iterations > 0);
-    CHECK(solved.info.error < out.info.error);
   }
   SECTION("a native FC/I entry that reduces bilateral constraints itself gives what the reduction left") {
     const GlobalProblem g = bilateral_case(0.3);
@@ -409,5 +442,9 @@ TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are ch
     req.common.max_time = std::numeric_limits<double>::infinity();
     registry::solve_bilateral_by_reduction(GlobalProblemView(g), req, probe);
     CHECK(std::isinf(given));
+  }
+  SECTION("... and returns its start when forming W outlasts max_time") {
+    const registry::SolveOutcome out = check_start_returned_when_W_outlasts(elastic_bilateral_case(), "nsn-ac-global");
+    CHECK(out.lambda.size() == 1);
   }
 }

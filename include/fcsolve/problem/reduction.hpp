@@ -27,6 +27,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 namespace fcsolve {
 
@@ -40,9 +41,10 @@ class GlobalReduction {
   }
 
   /// Factorises M (or K) and forms q and (if form_W) W. Throws
-  /// InvalidProblem("M", ...) when M (or K) is singular. With a finite
-  /// `max_seconds`, W of an elastic body (M^-1 dense) is formed by blocks of
-  /// columns and given up once that time is spent (formed_W() false, W
+  /// InvalidProblem("M", ...) when M (or K) is singular. A W not formed
+  /// from M's block inverse (an elastic body, M^-1 dense; bilateral
+  /// constraints, K^-1) is formed by blocks of columns and, with a finite
+  /// `max_seconds`, given up once that time is spent (formed_W() false, W
   /// 0 x 0; q and velocity() stay valid): its many-right-hand-side solve is
   /// the one part of a reduction that can outlast a caller's time limit by
   /// seconds (an elastic block of 700 contacts: 2.2 to 3.4 s).
@@ -79,17 +81,11 @@ class GlobalReduction {
     local_.mu = p.mu;
     if (!form_W) {
       local_.W.resize(0, 0);
-    } else if (p.has_bilateral()) {
-      SparseMatrix Hk = H_;
-      Hk.conservativeResize(rows_, H_.cols());
-      local_.W = H_.transpose() * SparseMatrix(solve_sparse(Hk).topRows(n_));
-    } else if (const auto Minv = block_diagonal_inverse(p.M, symmetric_)) {
+    } else if (const auto Minv = p.has_bilateral() ? std::nullopt : block_diagonal_inverse(p.M, symmetric_)) {
       // Rigid bodies: linear in the number of contacts (block_diagonal_inverse.hpp).
       local_.W = H_.transpose() * SparseMatrix(*Minv * H_);
-    } else if (std::isfinite(max_seconds)) {
-      formed_W_ = form_W_by_blocks(clock, max_seconds);
     } else {
-      local_.W = H_.transpose() * solve_sparse(H_);
+      formed_W_ = form_W_by_blocks(clock, max_seconds);
     }
     local_.W.makeCompressed();
     seconds_ = clock.seconds();
@@ -151,8 +147,10 @@ class GlobalReduction {
   /// time per column), so the limit is overrun by about that much, within
   /// 48 to 192 columns: on an elastic block of 700 contacts (2250 columns)
   /// blocks of 48 took 2.45 s in all, of 96 2.21 s, of 192 2.14 s, all at
-  /// once 2.2-2.5 s. A column's values do not depend on the blocks; the
-  /// blocks' columns are W's, appended in order.
+  /// once 2.2-2.5 s. Without a limit too: on one of 1500 contacts, by
+  /// blocks 11.9-12.6 s and 0.89 GB peak, all at once 13.8-14.4 s and
+  /// 2.1 GB (M^-1 H whole, then its product). A column's values do not
+  /// depend on the blocks; the blocks' columns are W's, appended in order.
   bool form_W_by_blocks(const Stopwatch& clock, double max_seconds) {
     constexpr double kBlockShare = 0.05;
     constexpr Index kMinColumns = 48, kMaxColumns = 192;
@@ -162,8 +160,8 @@ class GlobalReduction {
     for (Index j0 = 0; j0 < m;) {
       const Index count = std::min(next, m - j0);
       const double before = clock.seconds();
-      const SparseMatrix block = H_.transpose() * solve_sparse(H_.middleCols(j0, count));
-      W.reserve(block.nonZeros());  // more entries (CompressedStorage::reserve adds)
+      const SparseMatrix block = W_columns(j0, count);
+      W.reserve(extra_entries(W, block.nonZeros(), double(m - j0) / double(count)));
       for (Index j = 0; j < count; ++j) {
         W.startVec(j0 + j);
         for (SparseMatrix::InnerIterator it(block, j); it; ++it) W.insertBack(it.row(), j0 + j) = it.value();
@@ -180,6 +178,28 @@ class GlobalReduction {
     W.finalize();
     local_.W = std::move(W);
     return true;
+  }
+
+  /// Columns j0 .. j0 + count - 1 of W = H^T (M^-1 H)_v (with G: the
+  /// v-block of K^-1 applied to H padded with zero rows).
+  SparseMatrix W_columns(Index j0, Index count) const {
+    if (rows_ == n_) return H_.transpose() * solve_sparse(H_.middleCols(j0, count));
+    SparseMatrix Hk = H_.middleCols(j0, count);
+    Hk.conservativeResize(rows_, count);
+    return H_.transpose() * SparseMatrix(solve_sparse(Hk).topRows(n_));
+  }
+
+  /// What to reserve beyond W's entries (W filled column by column;
+  /// SparseMatrix::reserve(n) makes room for n more) before the next block's
+  /// `block_entries`: nothing while they fit; else the block's density
+  /// extrapolated to the columns left (`blocks_left` blocks like it), and at
+  /// least W's size, so that W is reallocated a few times, not once a block
+  /// (W of an elastic block of 4000 contacts is 1.7 GB in 63 blocks).
+  static Index extra_entries(const SparseMatrix& W, Index block_entries, double blocks_left) {
+    const Index size = W.data().size();
+    if (size + block_entries <= W.data().allocatedSize()) return 0;
+    const Index extrapolated = Index(std::ceil(double(block_entries) * blocks_left));
+    return std::max({extrapolated, block_entries, size});
   }
 
   Vector solve(const Vector& b) const {

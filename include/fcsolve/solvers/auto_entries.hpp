@@ -1168,7 +1168,7 @@ inline SolveOutcome solve_global(const GlobalProblemView& p, const SolveRequest&
   const LocalProblemView local(reduction.local());
   validate(local);  // once: the stages skip it (StagedRun::stage)
   SolveRequest inner = req;
-  inner.common.max_time = req.common.max_time - clock.seconds();
+  inner.common.max_time = time_left(req.common.max_time, clock.seconds());
   SolveOutcome out = Plan(local, inner, f, ReducedFrom{&p, &reduction}).run();
   out.v = reduction.velocity(out.r);
   if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);

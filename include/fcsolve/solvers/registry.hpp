@@ -129,9 +129,15 @@ inline Vector initial_reactions(const SolveRequest& req, Index size) {
   return req.r0.size() ? req.r0 : Vector(Vector::Zero(size));
 }
 
-/// A request whose max_time is finite, and the seconds left of it when its
-/// reduction to FC/II starts (solve_by_reduction).
+/// The seconds a reduction to FC/II may take (solve_by_reduction): what is
+/// left of the request's max_time on `clock` (infinite, and no clock read,
+/// without a limit), and the request, whose start a reduction that runs out
+/// of time returns.
 struct ReductionTime {
+  ReductionTime(const SolveRequest& request, const Stopwatch& clock)
+      : req(request),
+        seconds_left(std::isfinite(request.common.max_time) ? time_left(request.common.max_time, clock.seconds())
+                                                            : request.common.max_time) {}
   const SolveRequest& req;
   double seconds_left;
 };
@@ -139,23 +145,22 @@ struct ReductionTime {
 /// FC/I through FC/II: reduces p (W = H^T M^-1 H, q; problem/reduction.hpp),
 /// runs `solve_reduced(LocalProblemView)` and recovers v (and lambda when p
 /// has bilateral constraints). The outcome keeps the error scale
-/// ||H^T M^-1 f + w|| (`reduced_q_norm`; also in `*q_norm` if given).
-/// The one place the registry and the native entries reduce. With `timed`,
-/// W is formed within its seconds or not at all (GlobalReduction::compute):
-/// the outcome is then the request's starting point, no iteration,
-/// TimeLimit (issue 13: nsgs asked for 5 s on an elastic block of 4000
-/// contacts given as FC/I ran 176 s, 175 of them forming W, 13 GB).
+/// ||H^T M^-1 f + w|| (`reduced_q_norm`).
+/// The one place the registry and the native entries reduce. W is formed
+/// within `timed`'s seconds or not at all (GlobalReduction::compute): the
+/// outcome is then the request's starting point, no iteration, TimeLimit
+/// (issue 13: nsgs asked for 5 s on an elastic block of 4000 contacts given
+/// as FC/I ran 176 s, 175 of them forming W, 13 GB).
 template <class Backend = DefaultBackend, class SolveReduced>
-SolveOutcome solve_by_reduction(const GlobalProblemView& p, SolveReduced&& solve_reduced,
-                                double* q_norm = nullptr, const ReductionTime* timed = nullptr) {
-  GlobalReduction<Backend> reduction(p, /*form_W=*/true,
-                                     timed ? timed->seconds_left : std::numeric_limits<double>::infinity());
+SolveOutcome solve_by_reduction(const GlobalProblemView& p, const ReductionTime& timed,
+                                SolveReduced&& solve_reduced) {
+  GlobalReduction<Backend> reduction(p, /*form_W=*/true, timed.seconds_left);
   const double reduce_seconds = reduction.seconds();
   SolveOutcome out;
   if (reduction.formed_W()) {
     out = solve_reduced(LocalProblemView(reduction.local()));
   } else {
-    out.r = initial_reactions(timed->req, p.size());
+    out.r = initial_reactions(timed.req, p.size());
     out.info.status = Status::TimeLimit;
     out.info.message = "max_time spent forming W = H^T M^-1 H (the reduction to FC/II): no iteration run";
   }
@@ -163,7 +168,6 @@ SolveOutcome solve_by_reduction(const GlobalProblemView& p, SolveReduced&& solve
   if (p.has_bilateral()) out.lambda = reduction.multipliers(out.r);
   out.info.setup_seconds += reduce_seconds;
   out.reduced_q_norm = reduction.free_velocity_norm();
-  if (q_norm) *q_norm = out.reduced_q_norm;
   return out;
 }
 
@@ -175,11 +179,11 @@ template <class SolveReduced>
 SolveOutcome solve_bilateral_by_reduction(const GlobalProblemView& p, const SolveRequest& req,
                                           SolveReduced&& solve_reduced) {
   const Stopwatch clock;
-  SolveOutcome out = solve_by_reduction(p, [&](const LocalProblemView& reduced) {
+  SolveOutcome out = solve_by_reduction(p, ReductionTime(req, clock), [&](const LocalProblemView& reduced) {
     if (!std::isfinite(req.common.max_time)) return solve_reduced(reduced, req);
     return solve_reduced(reduced, within_time(req, clock));
   });
-  out.info.message = "bilateral constraints: solved in the reduced form" +
+  out.info.message = "bilateral constraints: reduced to FC/II" +
                      (out.info.message.empty() ? std::string() : "; " + out.info.message);
   return out;
 }
@@ -341,16 +345,12 @@ SolveOutcome run_checked(const GlobalProblemView& p, const SolverEntry& e, const
     out = e.solve_global(p, req);
   } else {
     if (!e.solve_local) throw UsageError("solver '" + e.name + "' has no entry point");
-    const ReductionTime timed{req, time_left(req.common.max_time, clock.seconds())};
-    out = solve_by_reduction<Backend>(
-        p,
-        [&](const LocalProblemView& reduced) {
-          Stopwatch inner;
-          validate(reduced);
-          if (!std::isfinite(req.common.max_time)) return run_checked(reduced, e, req, inner);
-          return run_checked(reduced, e, within_time(req, clock), inner);  // the reduction's time counts
-        },
-        nullptr, std::isfinite(req.common.max_time) ? &timed : nullptr);
+    out = solve_by_reduction<Backend>(p, ReductionTime(req, clock), [&](const LocalProblemView& reduced) {
+      Stopwatch inner;
+      validate(reduced);
+      if (!std::isfinite(req.common.max_time)) return run_checked(reduced, e, req, inner);
+      return run_checked(reduced, e, within_time(req, clock), inner);  // the reduction's time counts
+    });
   }
   check_returned(out.r, p.size(), e.name, "r");
   check_returned(out.v, p.num_dofs(), e.name, "v");
