@@ -22,6 +22,7 @@
 #include <fcsolve/problem/reduction.hpp>
 #include <fcsolve/scenes/box_layouts.hpp>
 #include <fcsolve/scenes/elastic_stepper.hpp>
+#include <fcsolve/scenes/mixed_shapes.hpp>
 #include <fcsolve/scenes/rigid_stepper.hpp>
 #include <fcsolve/scenes/sphere_pile.hpp>
 
@@ -55,6 +56,7 @@ const SceneInfo kScenes[] = {
     {"box-stack", false, 1, "columns of 0.1 m cubes, 4 contacts per face; the top box of a column mass_ratio times denser"},
     {"wall", false, 1, "running-bond wall of 0.2 x 0.1 x 0.06 m bricks, rows offset by half a brick; top row mass_ratio times denser"},
     {"tower", false, 1, "Kapla-style towers of 0.12 x 0.024 x 0.008 m planks, 3 per level crossed at right angles (12 contacts per face); top level mass_ratio times denser"},
+    {"mixed-shapes", false, 1, "spheres (radius 0.04..0.06 m) and boxes (half extents 0.03..0.05 m), half of each, falling into an open box; every 7th body mass_ratio times denser"},
     {"heavy-on-light", false, 1e3, "columns of 0.1 m cubes whose upper half is mass_ratio times denser than the lower"},
     {"fem-block", true, 1, "elastic block of trilinear hexahedra (lumped mass, E = 1e6 Pa, nu = 0.3) pressed and sheared on a rigid plane, node-to-plane contacts"},
     {"fem-two-bodies", true, 1, "elastic block pressed and sheared on a larger elastic block lying on a rigid plane: node-to-surface (non-matching meshes) and node-to-plane contacts; upper block mass_ratio times denser"},
@@ -126,6 +128,23 @@ void run_rigid(Scene& scene, const GenerateRequest& r, StepSettings s, long step
     snap.global = stepper.global();
     if (want_local) snap.local = stepper.local();
   });
+}
+
+/// The piles falling into the open box (sphere-pile, mixed-shapes), seeded
+/// and weighted from the request, stepped with h = 5 ms.
+template <class Scene, class Layout>
+void run_pile(Layout layout, const GenerateRequest& r, StepSettings s, Trajectory& t) {
+  layout.seed = r.seed;
+  layout.mass_ratio = r.mass_ratio;
+  Scene pile(layout);
+  s.h = 5e-3;
+  run_rigid(pile, r, s, r.steps, t);
+}
+
+/// Bodies for about `contacts` contacts at `small` contacts per body below
+/// 100 contacts, `large` from there.
+long bodies_for(long contacts, double small, double large) {
+  return std::max(1L, long(std::ceil(double(contacts) / (contacts < 100 ? small : large))));
 }
 
 /// fem-block: an (n+1) x (n+1) grid of bottom nodes ~ target contacts.
@@ -219,13 +238,14 @@ int generate(const GenerateRequest& request) {
   if (r.scene == "sphere-pile") {
     SpherePileLayout layout;
     // settled piles hold ~1.6 (small) to ~2.3 (large) contacts per sphere
-    layout.spheres = std::max(1L, long(std::ceil(double(r.contacts) / (r.contacts < 100 ? 1.5 : 2.0))));
-    layout.seed = r.seed;
-    layout.mass_ratio = r.mass_ratio;
-    SpherePile pile(layout);
-    StepSettings ps = s;
-    ps.h = 5e-3;
-    run_rigid(pile, r, ps, r.steps, t);
+    layout.spheres = bodies_for(r.contacts, 1.5, 2.0);
+    run_pile<SpherePile>(layout, r, s, t);
+  } else if (r.scene == "mixed-shapes") {
+    MixedShapesLayout layout;
+    // a pile of 200 bodies settles with ~3.5 contacts per body (boxes 4 per
+    // face patch), a few bodies on the floor with fewer
+    layout.bodies = bodies_for(r.contacts, 2.0, 3.0);
+    run_pile<MixedShapes>(layout, r, s, t);
   } else if (!info.elastic) {
     BoxLayout layout;
     layout.contacts = r.contacts;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A generated development corpus (issue 13, item 3): about 60 problems taken
+# A generated development corpus (issue 13, item 3): about 65 problems taken
 # along simulated trajectories by `fcsolve generate`, across every scene,
 # nc from 10 to 10^4 (elastic scenes to 1500: their trajectory is solved by
 # a Newton method that factorises at every iteration), mu from 0 to 2, mass ratios up to 10^4, with and
@@ -53,6 +53,8 @@ specs=(
   "fem-two-bodies 300 2 10 0.2" "fem-two-bodies 1000 0.6 100 0"
   "sphere-pile 30 0.5 - 0"    "box-stack 30 0.5 - 0"      "wall 30 0.5 - 0"
   "tower 30 0.5 - 0"
+  "mixed-shapes 30 0.5 - 0"   "mixed-shapes 300 0.8 - 0.1" "mixed-shapes 1000 0.5 100 0"
+  "mixed-shapes 3000 0.3 - 0"
 )
 
 start=$SECONDS

@@ -25,7 +25,8 @@ if have_fcref:
     sys.path.insert(0, str(TOOLS))
     import fcref  # noqa: E402  the independent reference, used only to check
 
-SCENES = ["sphere-pile", "box-stack", "wall", "tower", "heavy-on-light", "fem-block", "fem-two-bodies"]
+SCENES = ["sphere-pile", "box-stack", "wall", "tower", "mixed-shapes", "heavy-on-light", "fem-block",
+          "fem-two-bodies"]
 TOL = 1e-8
 
 

@@ -1,5 +1,5 @@
 // Axis-aligned boxes on the ground plane z = 0: the bodies and their contact
-// detection. Two boxes touch on the face pair whose separation is the
+// detection (the pair tests: shape_contacts.hpp). Two boxes touch on the face pair whose separation is the
 // largest over the three axes (the separating-axis test restricted to the
 // face normals of axis-aligned boxes, Ericson 2005, "Real-Time Collision
 // Detection", sec. 4.2.1); the contact patch is the overlap rectangle of
@@ -14,6 +14,7 @@
 #pragma once
 
 #include <fcsolve/scenes/rigid_bodies.hpp>
+#include <fcsolve/scenes/shape_contacts.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -26,13 +27,9 @@ class BoxScene {
   /// A box of half extents `half` centred at x, of this density and velocity.
   int add_box(const Vec3& x, const Vec3& half, double density, const Vec3& v = Vec3::Zero()) {
     const double m = density * 8.0 * half.prod();
-    // Solid cuboid: J_x = m (b^2 + c^2) / 3 with half extents a, b, c.
-    const Vec3 J(m * (half.y() * half.y() + half.z() * half.z()) / 3.0,
-                 m * (half.x() * half.x() + half.z() * half.z()) / 3.0,
-                 m * (half.x() * half.x() + half.y() * half.y()) / 3.0);
     half_.push_back(half);
     size_ = std::min(size_, half.minCoeff());
-    return bodies_.add(x, m, J, v);
+    return bodies_.add(x, m, cuboid_inertia(m, half), v);
   }
 
   RigidBodies& bodies() { return bodies_; }
@@ -63,65 +60,18 @@ class BoxScene {
     for (int s = 0; s < n; ++s) {
       const int i = order[s];
       const double reach = x(i)[axis] + half_[i][axis] + margin;
-      for (int t = s + 1; t < n && low(order[t]) <= reach; ++t)
-        face_contacts(std::min(i, order[t]), std::max(i, order[t]), margin, out);
+      for (int t = s + 1; t < n && low(order[t]) <= reach; ++t) {
+        const int a = std::min(i, order[t]), b = std::max(i, order[t]);
+        box_box_contacts(bodies_, a, half_[a], b, half_[b], margin, out);
+      }
     }
-    for (int i = 0; i < n; ++i) ground_contacts(i, margin, n, out);
+    const AxisPlane ground{Vec3::UnitZ(), 0.0, 0};
+    for (int i = 0; i < n; ++i) box_plane_contacts(bodies_, i, half_[i], ground, margin, out);
     std::sort(out.begin(), out.end(), [](const RigidContact& l, const RigidContact& r) { return l.key < r.key; });
     return out;
   }
 
  private:
-  /// Box a above (along the separating axis) box b: 4 corner contacts.
-  void face_contacts(int a, int b, double margin, std::vector<RigidContact>& out) const {
-    const Vec3 d = bodies_.position(a) - bodies_.position(b);
-    const Vec3 separation = d.cwiseAbs() - half_[a] - half_[b];
-    int k = 0;
-    const double gap = separation.maxCoeff(&k);
-    if (gap >= margin) return;
-    const int i = (k + 1) % 3, j = (k + 2) % 3;  // the face's axes
-    const Vec3 lo = (bodies_.position(a) - half_[a]).cwiseMax(bodies_.position(b) - half_[b]);
-    const Vec3 hi = (bodies_.position(a) + half_[a]).cwiseMin(bodies_.position(b) + half_[b]);
-    const double tiny = 1e-9 * (half_[a] + half_[b]).maxCoeff();
-    if (hi[i] - lo[i] <= tiny || hi[j] - lo[j] <= tiny) return;  // edge or corner: no patch
-    const double sign = d[k] >= 0 ? 1.0 : -1.0;
-    Vec3 normal = Vec3::Zero();
-    normal[k] = sign;  // from b into a
-    const Mat3 frame = frame_from_normal(normal);
-    const double plane = bodies_.position(b)[k] + sign * (half_[b][k] + 0.5 * gap);
-    for (unsigned corner = 0; corner < 4; ++corner) {
-      RigidContact c;
-      c.a = a;
-      c.b = b;
-      c.frame = frame;
-      c.point[k] = plane;
-      c.point[i] = (corner & 1) ? hi[i] : lo[i];
-      c.point[j] = (corner & 2) ? hi[j] : lo[j];
-      c.gap = gap;
-      c.key = contact_key(a, std::uint64_t(b), corner);
-      out.push_back(c);
-    }
-  }
-
-  /// Box i on the ground z = 0: its bottom face's 4 corners.
-  void ground_contacts(int i, double margin, int n, std::vector<RigidContact>& out) const {
-    const Vec3& x = bodies_.position(i);
-    const Vec3& e = half_[i];
-    const double gap = x.z() - e.z();
-    if (gap >= margin) return;
-    const Mat3 frame = frame_from_normal(Vec3::UnitZ());
-    for (unsigned corner = 0; corner < 4; ++corner) {
-      RigidContact c;
-      c.a = i;
-      c.b = -1;
-      c.frame = frame;
-      c.point = Vec3(x.x() + ((corner & 1) ? e.x() : -e.x()), x.y() + ((corner & 2) ? e.y() : -e.y()), 0.0);
-      c.gap = gap;
-      c.key = contact_key(i, std::uint64_t(n), corner);
-      out.push_back(c);
-    }
-  }
-
   RigidBodies bodies_;
   std::vector<Vec3> half_;
   double size_ = 1e300;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <fcsolve/scenes/rigid_bodies.hpp>
+#include <fcsolve/scenes/shape_contacts.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,28 +24,48 @@ struct SpherePileLayout {
   double mass_ratio = 1;   ///< every 7th sphere is this much denser
 };
 
+/// Where the open-box piles start (this file, mixed_shapes.hpp): layers of
+/// side x side cells of 2.6 R0 (wider than a body, 2.4 R0 at most), side ~
+/// 1.5 n^(1/3); body i's centre jittered by 0.1 R0 across and up to 0.4 R0
+/// up, with a small random velocity, falling.
+struct PileLattice {
+  PileLattice(long bodies, double size)
+      : R0(size), side(std::max<long>(2, long(std::ceil(1.5 * std::cbrt(double(bodies)))))), cell(2.6 * size) {}
+  double box() const { return double(side) * cell; }
+  Vec3 position(long i, Uniform& uni) const {
+    const long layer = i / (side * side), col = (i / side) % side, row = i % side;
+    return Vec3((double(row) + 0.5) * cell + uni(-0.1, 0.1) * R0, (double(col) + 0.5) * cell + uni(-0.1, 0.1) * R0,
+                1.2 * R0 + double(layer) * cell + uni(0.0, 0.4) * R0);
+  }
+  static Vec3 velocity(Uniform& uni) { return Vec3(uni(-0.2, 0.2), uni(-0.2, 0.2), uni(-0.5, 0.0)); }
+
+  double R0;
+  long side;
+  double cell;
+};
+
+/// A solid sphere of density rho and radius R: its mass, and its inertia
+/// 2/5 m R^2 about any axis.
+inline double sphere_mass(double rho, double R) {
+  constexpr double kPi = 3.14159265358979323846;
+  return rho * 4.0 / 3.0 * kPi * R * R * R;
+}
+inline Vec3 sphere_inertia(double m, double R) { return Vec3::Constant(0.4 * m * R * R); }
+
 class SpherePile {
  public:
-  static constexpr int kWalls = 5;  ///< floor, x = 0, x = L, y = 0, y = L (open on top)
-
   explicit SpherePile(const SpherePileLayout& p) : R0_(p.radius) {
     const long n = p.spheres;
-    side_ = std::max<long>(2, long(std::ceil(1.5 * std::cbrt(double(n)))));
-    const double cell = 2.6 * R0_;  // > the largest diameter, 2.4 R0
-    box_ = double(side_) * cell;
+    const PileLattice lattice(n, R0_);
+    box_ = lattice.box();
     Uniform uni(std::uint32_t(p.seed));
-    constexpr double kPi = 3.14159265358979323846;
     for (long i = 0; i < n; ++i) {
-      const long layer = i / (side_ * side_), col = (i / side_) % side_, row = i % side_;
       const double R = R0_ * uni(0.8, 1.2);
-      const double rho = p.density * (i % 7 == 6 ? p.mass_ratio : 1.0);
-      const double m = rho * 4.0 / 3.0 * kPi * R * R * R;
-      const Vec3 x((double(row) + 0.5) * cell + uni(-0.1, 0.1) * R0_,
-                   (double(col) + 0.5) * cell + uni(-0.1, 0.1) * R0_,
-                   1.2 * R0_ + double(layer) * cell + uni(0.0, 0.4) * R0_);
-      const Vec3 v(uni(-0.2, 0.2), uni(-0.2, 0.2), uni(-0.5, 0.0));
+      const double m = sphere_mass(p.density * (i % 7 == 6 ? p.mass_ratio : 1.0), R);
+      const Vec3 x = lattice.position(i, uni);
+      const Vec3 v = PileLattice::velocity(uni);
       radius_.push_back(R);
-      bodies_.add(x, m, Vec3::Constant(0.4 * m * R * R), v);
+      bodies_.add(x, m, sphere_inertia(m, R), v);
     }
   }
 
@@ -69,50 +90,18 @@ class SpherePile {
       const double reach = x(i).x() + radius_[i] + margin;
       for (int t = s + 1; t < n && x(order[t]).x() - radius_[order[t]] <= reach; ++t) {
         const int a = std::min(i, order[t]), b = std::max(i, order[t]);
-        const Vec3 d = x(a) - x(b);
-        const double dist = d.norm();
-        const double gap = dist - radius_[a] - radius_[b];
-        if (gap >= margin || dist == 0.0) continue;
-        RigidContact c;
-        c.a = a;
-        c.b = b;
-        c.frame = frame_from_normal(d / dist);  // from b into a
-        c.point = x(b) + c.frame.col(0) * (radius_[b] + 0.5 * gap);
-        c.gap = gap;
-        c.key = contact_key(a, std::uint64_t(b));
-        out.push_back(c);
+        sphere_sphere_contact(bodies_, a, radius_[a], b, radius_[b], margin, out);
       }
     }
-    for (int i = 0; i < n; ++i) {
-      for (int k = 0; k < kWalls; ++k) {
-        Vec3 normal = Vec3::Zero();
-        double offset = 0;  // wall: normal . x >= offset
-        switch (k) {
-          case 0: normal.z() = 1; break;
-          case 1: normal.x() = 1; break;
-          case 2: normal.x() = -1; offset = -box_; break;
-          case 3: normal.y() = 1; break;
-          default: normal.y() = -1; offset = -box_; break;
-        }
-        const double gap = normal.dot(x(i)) - offset - radius_[i];
-        if (gap >= margin) continue;
-        RigidContact c;
-        c.a = i;
-        c.b = -1 - k;
-        c.frame = frame_from_normal(normal);
-        c.point = x(i) - radius_[i] * normal;
-        c.gap = gap;
-        c.key = contact_key(i, std::uint64_t(n + k));
-        out.push_back(c);
-      }
-    }
+    const std::vector<AxisPlane> walls = open_box_planes(box_);
+    for (int i = 0; i < n; ++i)
+      for (const AxisPlane& wall : walls) sphere_plane_contact(bodies_, i, radius_[i], wall, margin, out);
     std::sort(out.begin(), out.end(), [](const RigidContact& l, const RigidContact& r) { return l.key < r.key; });
     return out;
   }
 
  private:
   double R0_;
-  long side_ = 2;
   double box_ = 1;
   std::vector<double> radius_;
   RigidBodies bodies_;
