@@ -7,6 +7,8 @@
 #   bash docs/measurements/heldout-scenes-2026-11-28.sh [FCSOLVE] [OUTDIR]
 #   ROUND=2 bash ...: the second round (2026-11-29), seeds 401-420, other
 #   parameter sets, never used for tuning either.
+#   ROUND=3 bash ...: the third (2026-11-29, later), seeds 501-516, with the
+#   mixed-shapes scene (spheres and boxes) that no solver was tuned on.
 # Columns: file, wall seconds (process), exit code, status, solver,
 # iterations, error, seconds | fcref.
 set -u
@@ -33,6 +35,14 @@ if [[ "${ROUND:-1}" == 2 ]]; then
     "heavy-on-light 600 0.3 10000 0.05 411" "fem-block 200 0.9 1 0 412" "fem-block 700 0.2 1 0 413"
     "fem-two-bodies 200 0.6 1 0 414" "fem-two-bodies 600 1.5 1 0 415" "sphere-pile 10 0.3 1 0 416"
     "box-stack 4 0.5 1 0 417" "wall 50 2.0 1 0.2 418" "tower 4000 0.8 1 0.05 419" "sphere-pile 600 0.0 1 0.1 420")
+fi
+if [[ "${ROUND:-1}" == 3 ]]; then
+  SPECS=(
+    "mixed-shapes 40 0.5 1 0 501" "mixed-shapes 400 1.0 1 0.1 502" "mixed-shapes 1500 0.3 100 0 503"
+    "mixed-shapes 3000 0.7 1 0.05 504" "mixed-shapes 200 0.0 1 0 505" "mixed-shapes 800 2.0 1000 0 506"
+    "sphere-pile 800 0.9 1 0.1 507" "box-stack 150 0.7 1 0 508" "wall 600 1.0 10 0 509" "tower 700 0.6 1 0 510"
+    "heavy-on-light 200 0.4 10000 0.1 511" "fem-block 300 0.7 1 0 512" "fem-two-bodies 400 0.8 10 0 513"
+    "sphere-pile 6 0.5 1 0 514" "box-stack 4 1.0 1 0 515" "mixed-shapes 10 0.5 1 0 516")
 fi
 for spec in "${SPECS[@]}"; do
   set -- $spec
