@@ -178,7 +178,9 @@ ElasticScene fem_scene(const GenerateRequest& r, const StepSettings& s, long ste
     upper.nx = upper.ny = grid(0.5 * double(r.contacts));
     upper.nz = std::clamp(upper.nx / 8, 1L, 2L);
     upper.material.density *= r.mass_ratio;
-    upper.origin = Vec3(0.08 + uni(-0.03, 0.03), 0.08 + uni(-0.03, 0.03), gap + lower.size.z() + gap);
+    const double dy = uni(-0.03, 0.03);  // last coordinate first (scenes/geometry.hpp, Uniform)
+    const double dx = uni(-0.03, 0.03);
+    upper.origin = Vec3(0.08 + dx, 0.08 + dy, gap + lower.size.z() + gap);
     blocks = {lower, upper};
   }
   bodies = long(blocks.size());

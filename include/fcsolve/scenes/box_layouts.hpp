@@ -31,7 +31,11 @@ namespace detail {
 /// with a random initial gap.
 inline double stacked(double top, double hz, Uniform& uni) { return top + hz * (1.0 + uni(0.01, 0.02)); }
 
-inline Vec3 drift(Uniform& uni, double speed) { return Vec3(uni(-speed, speed), uni(-speed, speed), 0.0); }
+inline Vec3 drift(Uniform& uni, double speed) {
+  const double vy = uni(-speed, speed);  // last coordinate first (geometry.hpp, Uniform)
+  const double vx = uni(-speed, speed);
+  return Vec3(vx, vy, 0.0);
+}
 
 inline long rounded(double x) { return std::max(1L, long(std::lround(x))); }
 
@@ -54,7 +58,9 @@ inline BoxScene box_columns(const BoxLayout& p, long height, long heavy_from) {
     for (long k = 0; k < height; ++k) {
       const bool heavy = k >= heavy_from || k == height - 1;
       const double z = detail::stacked(top, e, uni);
-      const Vec3 x(cx + uni(-0.1, 0.1) * e, cy + uni(-0.1, 0.1) * e, z);
+      const double dy = uni(-0.1, 0.1);  // last coordinate first (geometry.hpp, Uniform)
+      const double dx = uni(-0.1, 0.1);
+      const Vec3 x(cx + dx * e, cy + dy * e, z);
       scene.add_box(x, Vec3::Constant(e), p.density * (heavy ? p.mass_ratio : 1.0), detail::drift(uni, 0.02));
       top = z + e;
     }
@@ -80,7 +86,9 @@ inline BoxScene brick_wall(const BoxLayout& p) {
     const double z = detail::stacked(top, e.z(), uni);
     const double shift = (r % 2) ? e.x() + 0.5 * joint : 0.0;
     for (long j = 0; j < per_row; ++j) {
-      const Vec3 x(shift + double(j) * (2 * e.x() + joint) + uni(-0.2, 0.2) * joint, uni(-0.02, 0.02) * e.y(), z);
+      const double dy = uni(-0.02, 0.02);  // last coordinate first (geometry.hpp, Uniform)
+      const double dx = uni(-0.2, 0.2);
+      const Vec3 x(shift + double(j) * (2 * e.x() + joint) + dx * joint, dy * e.y(), z);
       scene.add_box(x, e, p.density * (r == rows - 1 ? p.mass_ratio : 1.0), detail::drift(uni, 0.01));
     }
     top = z + e.z();

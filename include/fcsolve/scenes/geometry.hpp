@@ -36,7 +36,12 @@ inline Mat3 cross_matrix(const Vec3& a) {
 
 /// A 32-bit Mersenne twister is specified bit for bit by the standard (its
 /// distributions are not): uniform numbers from its raw output keep a scene
-/// identical on every platform for a given seed.
+/// identical on every platform for a given seed, if each number is drawn in
+/// a statement of its own. Two draws in the arguments of one call come in
+/// an order C++ leaves unspecified (GCC evaluates Vec3(x, y, z) from z to
+/// x, Clang from x to z), which the scenes did until 2026-11-29; they now
+/// draw one per statement, from the last coordinate to the first, as GCC
+/// did, so that the files written before stay the same.
 class Uniform {
  public:
   explicit Uniform(std::uint32_t seed) : gen_(seed) {}

@@ -51,7 +51,10 @@ class MixedShapes {
         m = sphere_mass(rho, R);
         J = sphere_inertia(m, R);
       } else {
-        half = p.size * Vec3(uni(0.6, 1.0), uni(0.6, 1.0), uni(0.6, 1.0));
+        const double hz = uni(0.6, 1.0);  // last coordinate first (geometry.hpp, Uniform)
+        const double hy = uni(0.6, 1.0);
+        const double hx = uni(0.6, 1.0);
+        half = p.size * Vec3(hx, hy, hz);
         m = rho * 8.0 * half.prod();
         J = cuboid_inertia(m, half);
       }

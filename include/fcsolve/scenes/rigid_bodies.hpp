@@ -21,6 +21,7 @@
 #include <fcsolve/core/types.hpp>
 #include <fcsolve/scenes/geometry.hpp>
 
+#include <Eigen/Geometry>  // cross()
 #include <Eigen/SparseCore>
 
 #include <algorithm>

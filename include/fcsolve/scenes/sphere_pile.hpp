@@ -34,10 +34,18 @@ struct PileLattice {
   double box() const { return double(side) * cell; }
   Vec3 position(long i, Uniform& uni) const {
     const long layer = i / (side * side), col = (i / side) % side, row = i % side;
-    return Vec3((double(row) + 0.5) * cell + uni(-0.1, 0.1) * R0, (double(col) + 0.5) * cell + uni(-0.1, 0.1) * R0,
-                1.2 * R0 + double(layer) * cell + uni(0.0, 0.4) * R0);
+    const double dz = uni(0.0, 0.4);  // last coordinate first (geometry.hpp, Uniform)
+    const double dy = uni(-0.1, 0.1);
+    const double dx = uni(-0.1, 0.1);
+    return Vec3((double(row) + 0.5) * cell + dx * R0, (double(col) + 0.5) * cell + dy * R0,
+                1.2 * R0 + double(layer) * cell + dz * R0);
   }
-  static Vec3 velocity(Uniform& uni) { return Vec3(uni(-0.2, 0.2), uni(-0.2, 0.2), uni(-0.5, 0.0)); }
+  static Vec3 velocity(Uniform& uni) {
+    const double vz = uni(-0.5, 0.0);  // last coordinate first (geometry.hpp, Uniform)
+    const double vy = uni(-0.2, 0.2);
+    const double vx = uni(-0.2, 0.2);
+    return Vec3(vx, vy, vz);
+  }
 
   double R0;
   long side;
