@@ -115,10 +115,10 @@ GlobalProblem bilateral_case(double b) {
 /// An elastic body (M^-1 dense: one 30-dof block, above
 /// kMaxDenseInverseBlock) with 70 contacts: W's 210 columns span two of the
 /// reduction's blocks of columns.
-GlobalProblem elastic_case() {
+GlobalProblem elastic_case(Index nc = 70) {
   GlobalProblem g;
   g.d = 3;
-  const Index n = 30, nc = 70, m = 3 * nc;
+  const Index n = 30, m = 3 * nc;
   g.M = spd(n, 21).sparseView();
   std::srand(22);
   DenseMatrix H = DenseMatrix::Zero(n, m);
@@ -419,6 +419,12 @@ TEST_CASE("max_time counts the set-up: compute() and a reduction to FC/II are ch
       if (g.has_bilateral())
         CHECK((given_up.multipliers(r) - no_limit.multipliers(r)).norm() <= 1e-12 * no_limit.multipliers(r).norm());
     }
+  }
+  SECTION("a W completed past the limit is kept (one block of columns, a limit of 1e-12 s)") {
+    const GlobalProblem g = elastic_case(/*nc=*/10);  // 30 columns: the first block is the last
+    const GlobalReduction<> no_limit(g), late(g, /*form_W=*/true, 1e-12);
+    REQUIRE(late.formed_W());
+    CHECK((no_limit.local().W - late.local().W).norm() == 0);
   }
   SECTION("an FC/II entry on FC/I whose reduction outlasts max_time returns its start, no iteration") {
     const GlobalProblem g = elastic_case();

@@ -142,7 +142,9 @@ class GlobalReduction {
   }
 
   /// W = H^T M^-1 H by blocks of columns of H, the clock read after each
-  /// block; false (W 0 x 0) once it reads more than max_seconds. A block is
+  /// block but the last; false (W 0 x 0) once it reads more than
+  /// max_seconds (a W completed past the limit is kept: the solver then
+  /// returns after at most one iteration instead of its start). A block is
   /// sized to take about kBlockShare of max_seconds (from the last block's
   /// time per column), so the limit is overrun by about that much, within
   /// 48 to 192 columns: on an elastic block of 700 contacts (2250 columns)
@@ -166,6 +168,8 @@ class GlobalReduction {
         W.startVec(j0 + j);
         for (SparseMatrix::InnerIterator it(block, j); it; ++it) W.insertBack(it.row(), j0 + j) = it.value();
       }
+      j0 += count;
+      if (j0 == m) break;  // W is complete: kept, the clock not read
       const double now = clock.seconds();
       if (now > max_seconds) {
         local_.W.resize(0, 0);
@@ -173,7 +177,6 @@ class GlobalReduction {
       }
       const double per_column = std::max(now - before, 1e-9) / double(count);
       next = std::max(Index(std::min(kBlockShare * max_seconds / per_column, double(kMaxColumns))), kMinColumns);
-      j0 += count;
     }
     W.finalize();
     local_.W = std::move(W);
