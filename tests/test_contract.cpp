@@ -113,8 +113,8 @@ GlobalProblem bilateral_case(double b) {
 }
 
 /// An elastic body (M^-1 dense: one 30-dof block, above
-/// kMaxDenseInverseBlock) with 70 contacts: W's 210 columns span two of the
-/// reduction's blocks of columns.
+/// kMaxDenseInverseBlock) with nc contacts: by default 70, whose 210
+/// columns of W span two of the reduction's blocks of columns.
 GlobalProblem elastic_case(Index nc = 70) {
   GlobalProblem g;
   g.d = 3;
