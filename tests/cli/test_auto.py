@@ -175,6 +175,28 @@ def test_interior_point_stage_on_heavy_on_light_stacks(scene, after, tmp_path):
     assert independent_error(local, sol) <= 1e-8
 
 
+def test_full_newton_steps_that_stall_near_tol_are_finished_by_sweeps(tmp_path):
+    # a running-bond wall of 600 contacts given as FC/II (mu 1, top row 10x
+    # denser; W singular): full Newton steps bring the error from 0.5 to
+    # about 1e-8, then hover between 1e-8 and 3e-8 while a few degenerate
+    # contacts change sides, and stall. Within 10 x tol, 50 sweeps run
+    # before the interior point, and they finish: no interior point
+    local = tmp_path / "wall-local.hdf5"
+    g = run("generate", "wall", "--contacts", 600, "--seed", 901, "--mu", 1, "--mass-ratio", 10,
+            "--local-out", local)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(local, "--max-time", 60, out=sol)
+    assert code == 0 and res["status"] == "converged", res["message"]
+    check_stages(res)
+    stages = res["stages"]
+    k = next(k for k, st in enumerate(stages) if st["stage"] == "newton-full")
+    assert stages[k]["status"] == "stalled" and 1e-8 < stages[k]["error"] <= 1e-7, res["message"]  # the premise
+    assert stages[k + 1]["stage"] == "nsgs" and "x tol" in stages[k + 1]["why"], res["message"]
+    assert stages[k + 1]["iterations"] <= 50 and k + 1 == len(stages) - 1, res["message"]
+    assert independent_error(local, sol) <= 1e-8
+
+
 ON_FC1 = {"ipm-socqp", "nsn-ac-global"}  # stages that run on FC/I when its linear algebra is cheaper
 
 

@@ -31,6 +31,8 @@
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence);
+//              if they stall within 10 x tol, 50 sweeps first (they
+//              settle the few degenerate contacts the steps cycle on);
 //              if they stall, unless it ran at 1b, the
 //              nonsmooth interior point (`nipm`), 100 iterations at most,
 //              on a share of the budget (its iteration count barely feels
@@ -193,6 +195,17 @@ inline constexpr int kNewtonStallWindow = 25;
 /// The same for full Newton steps: they either contract fast or not at all.
 inline constexpr int kFullStepStallWindow = 12;
 inline constexpr int kNewtonMaxIter = 300;
+/// Full Newton steps that lowered the error but stalled within this factor
+/// of tol hand over to kBridgeProbeSweeps sweeps before the interior
+/// point. Near the solution of a singular W (walls, towers: many contacts
+/// per body) the full steps hover between 1e-9 and 1e-7 for tens of steps
+/// while the active set of a few degenerate contacts (r_N and u_N both
+/// near 0, or |r_T| near mu r_N) cycles; a Gauss-Seidel sweep solves each
+/// of them exactly given the others. Measured on an FC/II wall of 600
+/// contacts (mu 1, mass ratio 10): from the full steps' iterate at 8.1e-9
+/// the sweeps reached 4.5e-10 in 20 sweeps, 8.7e-11 in 50 (docs/results.md,
+/// 2026-12-01). 50 sweeps cost about one Newton step on W there.
+inline constexpr double kNearTolPolish = 10;
 /// Sweeps between two Newton stages: a first chunk, and the rest only when
 /// that chunk lowered the best error. Measured where the bridge ran (the
 /// shared set, the corpus, frictionless scenes with mass ratios; docs/
@@ -844,23 +857,32 @@ class Plan : private StagedRun<LocalProblemView> {
   /// problems, in 0.3 to 0.5x the time the Newton stages then took
   /// (docs/results.md, "auto: the interior point when full Newton steps
   /// stall"); where it stops short of tol, the line search goes on from
-  /// the better of the two iterates.
+  /// the better of the two iterates. Full steps that stalled near tol
+  /// (kNearTolPolish) get a chunk of sweeps first.
   void newton(const std::string& why) {
     const double before = best_error_;
     newton_stage("newton-full", budget(0.5), why + "; full steps", "none", kFullStepStallWindow);
     if (done()) return;
-    if (last_status_ != Status::TimeLimit) {
-      std::string why_ipm = std::string("full Newton steps ") + to_string(last_status_);
+    const Status full_steps = last_status_;
+    const bool progressed = best_error_ < before;
+    if (full_steps != Status::TimeLimit && progressed && best_error_ <= kNearTolPolish * tol()) {
+      stage("nsgs", "nsgs", budget(0.4), std::min(kBridgeProbeSweeps, max_iter_left()),
+            text("full Newton steps ", to_string(full_steps), " within ", kNearTolPolish,
+                 " x tol: sweeps on the degenerate contacts"));
+      if (done()) return;
+    }
+    if (full_steps != Status::TimeLimit) {
+      std::string why_ipm = std::string("full Newton steps ") + to_string(full_steps);
       // Full steps that did not lower the error at all leave the sweeps'
       // rate as the best measure of progress. The interior point that
       // would replace them costs more than the three steps' allowance the
       // sweeps were held to (kNewtonStepsWorthSweeping): once, they go on
       // while they predict tol within kInteriorPointStepsWorthSweeping
       // steps.
-      if (!(best_error_ < before) && !sweeps_resumed_ && sweep_rate_ < 1 && std::isfinite(newton_step_)) {
+      if (!progressed && !sweeps_resumed_ && sweep_rate_ < 1 && std::isfinite(newton_step_)) {
         sweeps_resumed_ = true;
-        const char* reason = last_status_ == Status::NotRun ? "full Newton steps not run (a step would not fit); "
-                                                            : "full Newton steps made no progress; ";
+        const char* reason = full_steps == Status::NotRun ? "full Newton steps not run (a step would not fit); "
+                                                          : "full Newton steps made no progress; ";
         why_ipm += ", " + continue_sweeps(kInteriorPointStepsWorthSweeping * newton_step_, reason,
                                           /*stop_on_slowdown=*/true);
         if (done()) return;
@@ -868,7 +890,7 @@ class Plan : private StagedRun<LocalProblemView> {
       interior_point(why_ipm);
       if (done()) return;
     }
-    newton_stage("newton", budget(0.6), std::string("full steps ") + to_string(last_status_) + ": line search",
+    newton_stage("newton", budget(0.6), std::string("full steps ") + to_string(full_steps) + ": line search",
                  "goldstein-price", kNewtonStallWindow);
   }
 
