@@ -143,8 +143,9 @@ class GlobalReduction {
 
   /// W = H^T M^-1 H by blocks of columns of H, the clock read after each
   /// block but the last; false (W 0 x 0) once it reads more than
-  /// max_seconds (a W completed past the limit is kept: the solver then
-  /// returns after at most one iteration instead of its start). A block is
+  /// max_seconds (a W completed past the limit is kept: the solver's own
+  /// time check then ends it, NSGS within 64 contact visits, a Newton or
+  /// interior-point solver before its first step). A block is
   /// sized to take about kBlockShare of max_seconds (from the last block's
   /// time per column), so the limit is overrun by about that much, within
   /// 48 to 192 columns: on an elastic block of 700 contacts (2250 columns)
