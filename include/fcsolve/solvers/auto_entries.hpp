@@ -31,8 +31,9 @@
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence);
-//              if they stall within 10 x tol, 50 sweeps first (they
-//              settle the few degenerate contacts the steps cycle on);
+//              if they stall within 10 x tol after lowering the error
+//              1000x, 50 sweeps first (they settle the few degenerate
+//              contacts the steps cycle on);
 //              if they stall, unless it ran at 1b, the
 //              nonsmooth interior point (`nipm`), 100 iterations at most,
 //              on a share of the budget (its iteration count barely feels
@@ -195,17 +196,24 @@ inline constexpr int kNewtonStallWindow = 25;
 /// The same for full Newton steps: they either contract fast or not at all.
 inline constexpr int kFullStepStallWindow = 12;
 inline constexpr int kNewtonMaxIter = 300;
-/// Full Newton steps that lowered the error but stalled within this factor
-/// of tol hand over to kBridgeProbeSweeps sweeps before the interior
-/// point. Near the solution of a singular W (walls, towers: many contacts
-/// per body) the full steps hover between 1e-9 and 1e-7 for tens of steps
-/// while the active set of a few degenerate contacts (r_N and u_N both
-/// near 0, or |r_T| near mu r_N) cycles; a Gauss-Seidel sweep solves each
-/// of them exactly given the others. Measured on an FC/II wall of 600
-/// contacts (mu 1, mass ratio 10): from the full steps' iterate at 8.1e-9
-/// the sweeps reached 4.5e-10 in 20 sweeps, 8.7e-11 in 50 (docs/results.md,
-/// 2026-12-01). 50 sweeps cost about one Newton step on W there.
+/// Full Newton steps that lowered the error by kFastPhaseReduction or
+/// more and stalled within kNearTolPolish of tol hand over to
+/// kBridgeProbeSweeps sweeps before the interior point. Near the solution
+/// of a singular W (walls, towers: many contacts per body) the full steps,
+/// once their fast local phase is over, hover between 1e-9 and 1e-7 for
+/// tens of steps while the active set of a few degenerate contacts (r_N and
+/// u_N both near 0, or |r_T| near mu r_N) cycles; a Gauss-Seidel sweep
+/// solves each of them exactly given the others. Measured on an FC/II wall
+/// of 600 contacts (mu 1, mass ratio 10): from the full steps' iterate at
+/// 8.1e-9 the sweeps reached 4.5e-10 in 20 sweeps, 8.7e-11 in 50; 50 sweeps
+/// cost about one Newton step on W there. Full steps that stall after
+/// less progress are not near a solution but on a hard problem, where the
+/// interior point is next: at tol 1e-4, walls whose full steps lowered
+/// the error 40 to 200x before stalling within 10 x tol took the sweeps
+/// and then 2 to 5x longer (or shorter: the path changes) in the stages
+/// after them (docs/results.md, 2026-12-01).
 inline constexpr double kNearTolPolish = 10;
+inline constexpr double kFastPhaseReduction = 1e3;
 /// Sweeps between two Newton stages: a first chunk, and the rest only when
 /// that chunk lowered the best error. Measured where the bridge ran (the
 /// shared set, the corpus, frictionless scenes with mass ratios; docs/
@@ -858,14 +866,15 @@ class Plan : private StagedRun<LocalProblemView> {
   /// (docs/results.md, "auto: the interior point when full Newton steps
   /// stall"); where it stops short of tol, the line search goes on from
   /// the better of the two iterates. Full steps that stalled near tol
-  /// (kNearTolPolish) get a chunk of sweeps first.
+  /// after their fast phase (kNearTolPolish) get a chunk of sweeps first.
   void newton(const std::string& why) {
     const double before = best_error_;
     newton_stage("newton-full", budget(0.5), why + "; full steps", "none", kFullStepStallWindow);
     if (done()) return;
     const Status full_steps = last_status_;
     const bool progressed = best_error_ < before;
-    if (full_steps != Status::TimeLimit && progressed && best_error_ <= kNearTolPolish * tol()) {
+    if (full_steps != Status::TimeLimit && best_error_ * kFastPhaseReduction <= before &&
+        best_error_ <= kNearTolPolish * tol()) {
       stage("nsgs", "nsgs", budget(0.4), std::min(kBridgeProbeSweeps, max_iter_left()),
             text("full Newton steps ", to_string(full_steps), " within ", kNearTolPolish,
                  " x tol: sweeps on the degenerate contacts"));
