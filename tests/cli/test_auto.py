@@ -179,8 +179,9 @@ def test_full_newton_steps_that_stall_near_tol_are_finished_by_sweeps(tmp_path):
     # a running-bond wall of 600 contacts given as FC/II (mu 1, top row 10x
     # denser; W singular): full Newton steps bring the error from 0.5 to
     # about 1e-8, then hover between 1e-8 and 3e-8 while a few degenerate
-    # contacts change sides, and stall. Within 10 x tol, 50 sweeps run
-    # before the interior point, and they finish: no interior point
+    # contacts change sides, and stall. Stalled within 10 x tol after
+    # lowering the error 1000x or more, they hand over to 50 sweeps before
+    # the interior point, and the sweeps finish: no interior point
     local = tmp_path / "wall-local.hdf5"
     g = run("generate", "wall", "--contacts", 600, "--seed", 901, "--mu", 1, "--mass-ratio", 10,
             "--local-out", local)
