@@ -68,14 +68,9 @@ class GlobalNewton
     jacobian_.compute(p.M, p.H);
     system_.compute(jacobian_);
     this->forget_step_time();
-    const Vector lumped = lumped_inverse_mass(p.M);
-    const SparseMatrix H(p.H);
     lumped_blocks_.resize(std::size_t(p.num_contacts()));
-    for (Index a = 0; a < p.num_contacts(); ++a) {
-      const SparseMatrix Ha = H.middleCols(a * d, d);
-      const SparseMatrix Wa = Ha.transpose() * lumped.asDiagonal() * Ha;
-      lumped_blocks_[std::size_t(a)] = Wa.toDense();
-    }
+    const Vector lumped = lumped_inverse_mass(p.M);
+    for (Index a = 0; a < p.num_contacts(); ++a) lumped_blocks_[std::size_t(a)] = lumped_block(p.H, lumped, a);
     const Index n = p.num_dofs(), m = p.size();
     for (Vector* x : {&r_, &u_, &best_r_, &du_}) x->resize(m);
     for (Vector* x : {&v_, &best_v_}) x->resize(n);
@@ -145,6 +140,24 @@ class GlobalNewton
     const double fallback = dinv.maxCoeff() > 0 ? dinv.maxCoeff() : 1.0;
     for (Index i = 0; i < dinv.size(); ++i) dinv[i] = 1.0 / (dinv[i] > 0 ? dinv[i] : fallback);
     return dinv;
+  }
+
+  /// Contact a's block H_a^T D H_a of the lumped W (D: the lumped M^-1),
+  /// from the entries of H's columns a d .. a d + d - 1: a few dozen
+  /// products a contact. (Formed as a sparse product of H.middleCols, each
+  /// block had cost O(n) in Eigen's storage conversions: 31 of the 34 s of
+  /// compute() on a sphere pile of 10^5 contacts, docs/results.md.)
+  static SmallMatrix<d> lumped_block(const SparseMap& H, const Vector& lumped, Index a) {
+    SmallMatrix<d> Wa;
+    for (int i = 0; i < d; ++i)
+      for (int j = 0; j <= i; ++j) {
+        double sum = 0;
+        for (SparseMap::InnerIterator hi(H, a * d + i); hi; ++hi)
+          for (SparseMap::InnerIterator hj(H, a * d + j); hj; ++hj)
+            if (hi.row() == hj.row()) sum += hi.value() * lumped[hi.row()] * hj.value();
+        Wa(i, j) = Wa(j, i) = sum;
+      }
+    return Wa;
   }
 
   // ---- hooks of NewtonLoop (refresh, set_rho_factor: ContactNewton)
