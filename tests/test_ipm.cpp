@@ -539,3 +539,53 @@ TEST_CASE("Bad input is a typed exception", "[ipm][input]") {
   auto req = registry::make_request(fcsolve_test::catalogue_find("nipm"));
   CHECK_THROWS_AS(fcsolve_test::solve_named(LocalProblemView(frictionless), "nipm", req), UsageError);
 }
+
+#ifdef FCSOLVE_WITH_CHOLMOD
+TEST_CASE("A factorisation that cannot end within max_time is not started", "[ipm][time]") {
+  // CHOLMOD counts the flops of an LDL^T in its symbolic analysis: a dense
+  // n x n pattern costs sum_k k^2 ~ n^3 / 3
+  const int n = 200;
+  SparseKkt dense;
+  dense.set_pattern(DenseMatrix::Ones(n, n).sparseView(), /*symmetric=*/true);
+  CHECK(dense.estimated_flops() == Approx(double(n) * n * n / 3).epsilon(0.05));
+
+  // FC/II with a dense W of 400 contacts: the local form's K is dense,
+  // 1200 x 1200, at least 5.8e8 / kFactorizationFlopRateBound = 0.14 s a
+  // factorisation; the run is given 0.02 s
+  const Index nc = 400, m = 3 * nc;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  DenseMatrix B(m, m);
+  for (Index j = 0; j < m; ++j)
+    for (Index i = 0; i < m; ++i) B(i, j) = uniform(rng);
+  const DenseMatrix W = B * B.transpose() / double(m) + DenseMatrix::Identity(m, m);
+  LocalProblem p;
+  p.W = W.sparseView();
+  p.q.resize(m);
+  for (Index i = 0; i < m; ++i) p.q[i] = uniform(rng) - (i % 3 == 0 ? 1.0 : 0.0);
+  p.mu = Vector::Constant(nc, 0.5);
+  const double least = 0.98 * double(m) * m * m / 3 / kFactorizationFlopRateBound;
+  REQUIRE(least > 0.1);
+
+  IpmSettings st;
+  st.tol = 1e-10;
+  st.max_time = 0.02;
+  LocalSocqpIpm<Coulomb3D, SparseKkt> limited(st);
+  limited.compute(p);
+  Vector r = Vector::Zero(m), u(m);
+  const SolverInfo info = limited.solve(r, u);
+  CHECK(info.status == Status::TimeLimit);
+  CHECK(info.iterations == 0);
+  CHECK(info.message.find("would not end within max_time: not started") != std::string::npos);
+  CHECK(r.allFinite());
+  CHECK(limited.coulomb_error() == Approx(local_error(p, r)).epsilon(1e-12));
+
+  // with the time it needs, the same solve takes its steps
+  st.max_time = std::numeric_limits<double>::infinity();
+  st.max_iter = 1;
+  LocalSocqpIpm<Coulomb3D, SparseKkt> unlimited(st);
+  unlimited.compute(p);
+  Vector r2 = Vector::Zero(m), u2(m);
+  CHECK(unlimited.solve(r2, u2).iterations == 1);
+}
+#endif

@@ -104,7 +104,7 @@ class AclmSolver : public IpmSolverBase<Form> {
     const AclmSettings& st = settings_;
     Iterate& it = this->it_;
     it.s = o.s;
-    this->engine_->cold_start(it, false);
+    this->engine_->cold_start(it, false, st.max_time - clock.seconds());
     o.prev_s = o.s;
     o.inner_tol = std::max(0.1, st.tol);
     for (; o.steps < st.max_outer && o.total < st.max_iter; ++o.steps) {
@@ -122,7 +122,10 @@ class AclmSolver : public IpmSolverBase<Form> {
       const double residual = (o.Fs - o.s).norm();
       if (st.record_history) this->info_.history.push_back(error);
       this->consider(r, w, error);
-      if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped) {
+      // (an inner TimeLimit: the time is spent, or the next factorisation
+      // would not end within it)
+      if (rep.exit == IpmExit::NumericalError || rep.exit == IpmExit::Stopped ||
+          rep.exit == IpmExit::TimeLimit) {
         o.note = this->describe("inner IPM", rep);
         break;
       }

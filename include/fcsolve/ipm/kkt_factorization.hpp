@@ -34,6 +34,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 namespace fcsolve {
@@ -48,6 +49,8 @@ struct KktSolvers {
   using Lu = typename Backend::GeneralSolver;
   static void configure(Ldlt&) {}
   static void configure(Lu&) {}
+  /// The flops of the analysed factorisation: not reported by Eigen's LDL^T.
+  static double analysed_flops(const Ldlt&) { return 0; }
 };
 #ifdef FCSOLVE_WITH_CHOLMOD
 template <>
@@ -66,6 +69,9 @@ struct KktSolvers<SuiteSparseBackend> {
   /// No refinement inside UMFPACK's solve: KktSystem refines against the
   /// unregularised matrix itself, and the polish is a Newton iteration.
   static void configure(Lu& s) { s.umfpackControl()(UMFPACK_IRSTEP) = 0; }
+  /// CHOLMOD's flop count of the analysed LDL^T (cholmod_common::fl, set
+  /// by cholmod_analyze).
+  static double analysed_flops(Ldlt& s) { return s.cholmod().fl; }
 };
 #endif
 
@@ -91,6 +97,8 @@ class SparseKktFactorization {
     symmetric_ = symmetric;
     analysed_ = false;
     pattern_ = false;
+    pattern_checked_ = false;
+    flops_ = 0;
     sym_.reset();
     gen_.reset();
     pb_.resize(K_.rows());
@@ -112,15 +120,27 @@ class SparseKktFactorization {
 
   /// Numerical factorisation of the current values (symbolic analysis once).
   bool factorize() {
-    if (symmetric_) return factorize_with(sym_);
-    if constexpr (has_pattern_lu<Backend>::value) {
-      if (!analysed_) {
-        pattern_ = pattern_lu_suits(pattern_lu_, K_);
-        if (pattern_) analysed_ = true;
-      }
-      if (pattern_) return pattern_lu_.factorize(K_);
+    if (symmetric_) {
+      analyse_with(sym_);
+      sym_->factorize(K_);
+      return sym_->info() == Eigen::Success;
     }
-    return factorize_with(gen_);
+    if (choose_pattern_lu()) return factorize_pattern_lu();
+    analyse_with(gen_);
+    gen_->factorize(K_);
+    return gen_->info() == Eigen::Success;
+  }
+
+  /// The flops of a numerical factorisation as its symbolic analysis counts
+  /// them (the analysis is done here if it was not, and kept); 0 where the
+  /// factorisation does not say (UMFPACK, Eigen's LDL^T and LU).
+  double estimated_flops() {
+    if (symmetric_) {
+      analyse_with(sym_);
+      return flops_;
+    }
+    if (choose_pattern_lu()) return pattern_lu_flops();
+    return 0;
   }
   void solve(const Vector& b, Vector& x) const {
     pb_.noalias() = perm_ * b;
@@ -135,21 +155,44 @@ class SparseKktFactorization {
     if constexpr (has_pattern_lu<Backend>::value) pattern_lu_.solve(b, x);
   }
 
+  /// For an unsymmetric K: whether it goes to the backend's PatternLU
+  /// (analysed there once, when it suits the pattern).
+  bool choose_pattern_lu() {
+    if constexpr (has_pattern_lu<Backend>::value) {
+      if (!pattern_checked_) {
+        pattern_ = pattern_lu_suits(pattern_lu_, K_);
+        pattern_checked_ = true;
+      }
+    }
+    return pattern_;
+  }
+  bool factorize_pattern_lu() {
+    if constexpr (has_pattern_lu<Backend>::value) return pattern_lu_.factorize(K_);
+    return false;
+  }
+  double pattern_lu_flops() const {
+    if constexpr (has_pattern_lu<Backend>::value) return pattern_lu_.estimated_flops();
+    return 0;
+  }
+
   template <class Solver>
-  bool factorize_with(std::unique_ptr<Solver>& solver) {
+  void analyse_with(std::unique_ptr<Solver>& solver) {
     if (!solver) {
       solver = std::make_unique<Solver>();
       KktSolvers<Backend>::configure(*solver);
     }
-    if (!analysed_) solver->analyzePattern(K_);
+    if (!analysed_) {
+      solver->analyzePattern(K_);
+      if constexpr (std::is_same_v<Solver, typename KktSolvers<Backend>::Ldlt>)
+        flops_ = KktSolvers<Backend>::analysed_flops(*solver);
+    }
     analysed_ = true;
-    solver->factorize(K_);
-    return solver->info() == Eigen::Success;
   }
 
   SparseMatrix K_;  // P K P^T, kept alive: CHOLMOD, UMFPACK and KLU refer to it
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> perm_;
-  bool symmetric_ = true, analysed_ = false, pattern_ = false;
+  bool symmetric_ = true, analysed_ = false, pattern_ = false, pattern_checked_ = false;
+  double flops_ = 0;  // of the analysed LDL^T, where its analysis counts them
   std::unique_ptr<typename KktSolvers<Backend>::Ldlt> sym_;
   std::unique_ptr<typename KktSolvers<Backend>::Lu> gen_;
   // solve() is const for the callers; KLU's solve checks its backward error
@@ -184,6 +227,11 @@ class DenseKktFactorization {
     // PartialPivLU does not report singularity: check the pivots.
     const auto d = lu_.matrixLU().diagonal().cwiseAbs();
     return d.size() == 0 || d.minCoeff() > 1e-300 * std::max(1.0, d.maxCoeff());
+  }
+  /// n^3 / 3 for LDL^T, 2 n^3 / 3 for LU (Golub & Van Loan, 4th ed., 3.2, 4.1).
+  double estimated_flops() const {
+    const double n = double(K_.rows());
+    return (symmetric_ ? 1.0 : 2.0) * n * n * n / 3.0;
   }
   void solve(const Vector& b, Vector& x) const {
     if (symmetric_) x = ldlt_.solve(b);

@@ -21,6 +21,16 @@
 namespace fcsolve {
 namespace ipm {
 
+/// A rate (flops a second) above what a numerical factorisation of K
+/// reaches on one core: CHOLMOD's simplicial LDL^T and KLU's left-looking
+/// LU update one scalar at a time through index arrays. Measured with the
+/// LDL^T of ipm-socqp on sphere piles (FC/I, 2026-12-02, docs/results.md):
+/// 0.8 GFlop/s at 10^4 contacts (7.6e8 flops), 1.8 GFlop/s at 10^5 (1.7e11
+/// flops, 96 s). A factorisation whose counted flops would not end within
+/// the time left even at this rate is not started
+/// (InteriorPoint::factorization_fits).
+inline constexpr double kFactorizationFlopRateBound = 4e9;
+
 template <int D, class Factorization>
 class KktSystem {
  public:
@@ -113,6 +123,11 @@ class KktSystem {
   /// delta * weight_j to K_jj (signed for quasi-definite K; default 1).
   Vector& regularization_weights() { return reg_weight_; }
   const Blocks& blocks() const { return blocks_; }
+
+  /// The least time the next factorize() can take: its flops, as the
+  /// symbolic analysis counts them, at kFactorizationFlopRateBound; 0 where
+  /// the factorisation does not count them.
+  double least_factorization_seconds() { return factor_.estimated_flops() / kFactorizationFlopRateBound; }
 
   /// Writes A0 + G B G^T + delta diag(weights) (B = blocks()) and factorises it.
   bool factorize(double delta) {

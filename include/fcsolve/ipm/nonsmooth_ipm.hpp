@@ -78,13 +78,14 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     best_iterate_ = Iterate();
     total_ = 0;
     stopped_ = false;
+    factorization_refused_ = false;
     last_exit_ = IpmExit::Converged;
     limit_ = st.soft_time > 0 ? std::min(st.soft_time, st.max_time) : st.max_time;
     if (!this->try_warm_start(r, st, nullptr, limit_)) {
       // 1. NIPM until it slows down, then the polish.
       Iterate& it = this->it_;
       it.s.setZero(this->form_->num_contacts());
-      this->engine_->cold_start(it, true);
+      this->engine_->cold_start(it, true, st.max_time - clock.seconds());
       EngineRun opt = this->engine_run(st, true, st.tol, st.max_iter, st.max_time);
       opt.soft_time = st.soft_time;
       first_exit_ = run("NIPM", opt, clock).exit;
@@ -100,7 +101,7 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     Status otherwise = Status::Stalled;
     if (stopped_) otherwise = Status::Stopped;
     else if (remaining() <= 0) otherwise = Status::MaxIterations;
-    else if (clock.seconds() > limit_) otherwise = Status::TimeLimit;
+    else if (clock.seconds() > limit_ || factorization_refused_) otherwise = Status::TimeLimit;
     else if (last_exit_ == IpmExit::NumericalError) otherwise = Status::NumericalError;
     return this->finish(r, w, st.tol, otherwise, clock);
   }
@@ -108,7 +109,8 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
  private:
   int remaining() const { return settings_.max_iter - total_; }
   bool done(const Stopwatch& clock) const {
-    return this->best_.error <= settings_.tol || remaining() <= 0 || clock.seconds() > limit_;
+    return this->best_.error <= settings_.tol || remaining() <= 0 || clock.seconds() > limit_ ||
+           factorization_refused_;
   }
   /// The time this solve keeps to: soft_time, or max_time once a run went
   /// on past soft_time.
@@ -134,13 +136,16 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
     this->extract(this->it_, rr, ww);
     consider_iterate(rr, ww, rep.error);
     last_exit_ = rep.exit;
+    factorization_refused_ = factorization_refused_ || rep.factorization_refused;
     return rep;
   }
 
   /// The natural-map polish from the best point, unless it meets tol.
   void polish_best(const Stopwatch& clock) {
     const NipmSettings& st = settings_;
-    if (!st.polish || this->best_.error <= st.tol) return;
+    // (its Newton matrices are of the same problem: where the IPM's would
+    // not fit in the time left, neither would they)
+    if (!st.polish || this->best_.error <= st.tol || factorization_refused_) return;
     Vector rr = this->best_.r, ww = this->best_.w;
     const PolishResult pr = this->polish(st, rr, ww, nullptr, st.tol, limit_ - clock.seconds());
     this->add_to_message(this->describe_polish(pr));
@@ -223,6 +228,8 @@ class NonsmoothIpm : public IpmSolverBase<Form> {
   Iterate best_iterate_;
   int total_ = 0;
   bool stopped_ = false;
+  /// a run ended before a factorisation that would not end within max_time
+  bool factorization_refused_ = false;
   IpmExit first_exit_ = IpmExit::MaxIterations, last_exit_ = IpmExit::MaxIterations;
 };
 

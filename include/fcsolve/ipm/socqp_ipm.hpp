@@ -80,7 +80,7 @@ class SocqpIpm : public IpmSolverBase<Form> {
     const IpmSettings& st = settings_;
     Iterate& it = this->it_;
     it.s = s_;
-    this->engine_->cold_start(it, false);
+    this->engine_->cold_start(it, false, st.max_time - clock.seconds());
     EngineRun opt = this->engine_run(st, false, st.tol, st.max_iter, st.max_time);
     const IpmReport rep = this->run_engine(it, opt);
     info.iterations = rep.iterations;
@@ -89,7 +89,9 @@ class SocqpIpm : public IpmSolverBase<Form> {
     Vector r, w;
     this->extract(it, r, w);
     this->consider(r, w, rep.error);
-    if (rep.error <= st.tol || !st.polish) return rep.exit;
+    // The polish factorises Newton matrices of the same problem: where the
+    // IPM's would not fit in the time left, neither would they.
+    if (rep.error <= st.tol || !st.polish || rep.factorization_refused) return rep.exit;
     const PolishResult pr = this->polish(st, r, w, &s_, st.tol, st.max_time - clock.seconds());
     this->add_to_message(this->describe_polish(pr));
     this->consider(r, w, pr.error);
