@@ -117,7 +117,8 @@ class AdmmLoop {
         best_error_ = error;
         self().save_best();
       }
-      extrapolate(momentum, dual_sq);
+      if (momentum.error_grew(error)) restart_extrapolation(momentum);
+      else extrapolate(momentum, dual_sq);
       FCSOLVE_NO_MALLOC_END();
       if (!std::isfinite(error)) {
         info_.status = Status::NumericalError;

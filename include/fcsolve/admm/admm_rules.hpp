@@ -5,6 +5,7 @@
 
 #include <fcsolve/admm/admm_settings.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -26,11 +27,26 @@ inline double admm_rho_factor(AdmmRhoStrategy strategy, double rp, double rd) {
   return f > 5 || f < 0.2 ? f : 1;
 }
 
+/// The FCLIB error, since the extrapolation last restarted, past this
+/// multiple of its least value restarts it (AdmmMomentum::error_grew).
+inline constexpr double kMomentumErrorGrowth = 2;
+
 /// Nesterov's extrapolation with restart of Goldstein, O'Donoghue, Setzer &
 /// Baraniuk 2014 (alg. 8) on the combined residual c_k.
 class AdmmMomentum {
  public:
   explicit AdmmMomentum(double restart_factor) : eta_(restart_factor) {}
+
+  /// True when the FCLIB error has grown past kMomentumErrorGrowth times
+  /// its least value since the restart: the caller restarts. Alg. 8's
+  /// test watches the combined residual only, which on a De Saxce-shifted
+  /// (nonconvex) problem can keep falling while beta -> 1 lets a mode
+  /// grow: on a pile of 10^4 spheres the error rose 0.8 % an iteration
+  /// for 800 iterations, 5.5e-6 -> 2.5e-3, with no restart.
+  bool error_grew(double error) {
+    least_error_ = std::min(least_error_, error);
+    return error > kMomentumErrorGrowth * least_error_;
+  }
 
   /// beta >= 0 to extrapolate x^ = x + beta (x - x_prev) when c fell below
   /// c_{k-1} / eta; a negative value to restart from x_prev.
@@ -49,6 +65,7 @@ class AdmmMomentum {
 
  private:
   double eta_;
+  double least_error_ = std::numeric_limits<double>::infinity();
   double a_ = 1;
   double combined_prev_ = std::numeric_limits<double>::infinity();
 };
