@@ -209,9 +209,10 @@ inline constexpr int kNewtonMaxIter = 300;
 /// cost about one Newton step on W there. Full steps that stall after
 /// less progress are not near a solution but on a hard problem, where the
 /// interior point is next: at tol 1e-4, walls whose full steps lowered
-/// the error 40 to 200x before stalling within 10 x tol took the sweeps
-/// and then 2 to 5x longer (or shorter: the path changes) in the stages
-/// after them (docs/results.md, 2026-12-01).
+/// the error 40 to 200x before stalling within 10 x tol took the sweeps,
+/// and the path after them changed (a pile 121 -> 175 iterations; of four
+/// walls two 2 to 10x faster, two as much slower; docs/results.md,
+/// 2026-12-01).
 inline constexpr double kNearTolPolish = 10;
 inline constexpr double kFastPhaseReduction = 1e3;
 /// Sweeps between two Newton stages: a first chunk, and the rest only when
@@ -866,7 +867,8 @@ class Plan : private StagedRun<LocalProblemView> {
   /// (docs/results.md, "auto: the interior point when full Newton steps
   /// stall"); where it stops short of tol, the line search goes on from
   /// the better of the two iterates. Full steps that stalled near tol
-  /// after their fast phase (kNearTolPolish) get a chunk of sweeps first.
+  /// after their fast phase (kFastPhaseReduction, kNearTolPolish) get a
+  /// chunk of sweeps first.
   void newton(const std::string& why) {
     const double before = best_error_;
     newton_stage("newton-full", budget(0.5), why + "; full steps", "none", kFullStepStallWindow);
