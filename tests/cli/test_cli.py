@@ -4,6 +4,7 @@ shared file, `error` agrees to 1e-10 relative on non-trivial (r, v), and
 every malformed input ends with exit code 2 and a message naming the file
 and the dataset, never a signal."""
 import json
+import re
 import os
 import subprocess
 import sys
@@ -244,6 +245,24 @@ def test_solver_settings_are_typed():
     assert bad_name.returncode == 2 and "second_step" in bad_name.stderr
     not_here = run("solve", problem, "--solver", "vi-fp", "--second-step", "predictor")
     assert not_here.returncode == 2 and "second-step" in not_here.stderr
+
+
+def test_nsgs_freeze_tol_reaches_the_solver_and_success_stays_a_full_error(tmp_path):
+    problem = BUNDLED / "Capsules-i101-404.hdf5"
+    sweeps = {}
+    for freeze_tol in ("1e-14", "1e-3"):  # the default, and one that freezes contacts that still move
+        out_file = tmp_path / f"s{freeze_tol}.hdf5"
+        out = run("solve", problem, "--solver", "nsgs", "--tol", "1e-8", "--freeze-tol", freeze_tol,
+                  "--out", out_file)
+        assert out.returncode == 0, out.stderr
+        sweeps[freeze_tol] = int(re.search(r"iterations=(\d+)", out.stdout).group(1))
+        if have_shared:
+            with h5py.File(out_file) as f:
+                r = np.asarray(f["solution/r"])
+            assert fcref.error(fcref.load(str(problem)), r) <= 1e-8
+    assert sweeps["1e-3"] > sweeps["1e-14"]  # frozen contacts cost sweeps: the setting was used
+    bad = run("solve", problem, "--solver", "nsgs", "--freeze-tol", "2")
+    assert bad.returncode == 2 and "freeze_tol" in bad.stderr
 
 
 def test_global_solve_recovers_v(tmp_path):

@@ -50,6 +50,9 @@ inline std::vector<SettingSpec> common_settings(double omega) {
       integer_setting("freezing", d.freezing,
                       "skip a contact for k sweeps once its local solution stops moving (0: off)",
                       0, 1e9),
+      real_setting("freeze_tol", d.freeze_tol,
+                   "relative move ||dr|| / ||r|| at or below which a contact counts as not moving",
+                   0, 1),
       boolean_setting("extrapolate", d.extrapolate,
                       "Aitken extrapolation when sweeps converge linearly (kept only if it "
                       "lowers the FCLIB error)"),
@@ -70,6 +73,7 @@ void apply_common(const SolveRequest& req, Settings& s) {
   s.give_up_sweeps = static_cast<int>(v.integer("give_up_sweeps"));
   s.error_every = static_cast<int>(v.integer("error_every"));
   s.freezing = static_cast<int>(v.integer("freezing"));
+  s.freeze_tol = v.real("freeze_tol");
   s.extrapolate = v.boolean("extrapolate");
 }
 
