@@ -33,15 +33,17 @@ class FormBase {
   Index size() const { return m_; }
   Index num_contacts() const { return nc_; }
   const VectorMap& mu() const { return p_->mu; }
-  bool symmetric_data() const { return symmetric_data_; }
   double initial_scaling() const { return theta_; }
   double error_scale() const { return q_norm_ > 0 ? q_norm_ : 1.0; }
   KktSystem<D, Factorization>& kkt() { return kkt_; }
+  /// Whether K is factorised symmetric (LDL^T): the data are symmetric and
+  /// s is frozen (coupled s makes the contact blocks unsymmetric).
+  bool symmetric_kkt(bool coupled) const { return symmetric_data_ && !coupled; }
 
   /// Contact blocks ±P_a^-1 T_a^2 (P_a^-1 = I - e n_a^T when s is coupled);
   /// a symmetric factorisation iff the data are symmetric and s frozen.
   bool factorize(const ContactState<D>& cs, bool coupled, double delta) {
-    kkt_.set_symmetric(symmetric_data_ && !coupled);
+    kkt_.set_symmetric(symmetric_kkt(coupled));
     auto& B = kkt_.blocks();
     for (std::size_t a = 0; a < B.size(); ++a) {
       const Mat<D>& T = cs.scaling[a].T;
@@ -56,7 +58,7 @@ class FormBase {
 
   /// Uniform scaling T = theta I, P = I (the initial point).
   bool factorize_uniform(double theta, double delta) {
-    kkt_.set_symmetric(symmetric_data_);
+    kkt_.set_symmetric(symmetric_kkt(false));
     for (auto& B : kkt_.blocks()) B = double(ContactBlockSign) * theta * theta * Mat<D>::Identity();
     return kkt_.factorize(delta);
   }

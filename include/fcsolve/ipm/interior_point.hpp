@@ -143,7 +143,7 @@ class InteriorPoint {
     it.v.setZero(form_.primal_size());
     it.x.setZero(form_.size());
     it.y.setZero(form_.size());
-    form_.kkt().set_symmetric(form_.symmetric_data());
+    form_.kkt().set_symmetric(form_.symmetric_kkt(false));  // factorize_uniform's matrix
     if (!factorization_fits(seconds_left)) {
       add_normal<D>(it.x, Vector::Ones(nc));
       add_normal<D>(it.y, Vector::Ones(nc));
@@ -351,7 +351,7 @@ class InteriorPoint {
   /// The same before an iteration's factorisation; when it does not fit,
   /// the run ends with TimeLimit and says why.
   bool factorization_fits(const EngineRun& opt, const Stopwatch& clock, IpmReport& rep) {
-    form_.kkt().set_symmetric(form_.symmetric_data() && !opt.coupled);
+    form_.kkt().set_symmetric(form_.symmetric_kkt(opt.coupled));
     const double least = form_.kkt().least_factorization_seconds();
     if (least <= opt.max_time - clock.seconds()) return true;
     rep.exit = IpmExit::TimeLimit;
