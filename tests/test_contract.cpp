@@ -300,7 +300,7 @@ TEST_CASE("every settings enum parses what its to_string writes, and nothing els
                                       RhoStrategy::SplitSpectralNorm, RhoStrategy::Adaptive});
   round_trip(std::vector<ContactOrdering>{ContactOrdering::Natural, ContactOrdering::ShuffledOnce,
                                           ContactOrdering::ShuffledEachSweep,
-                                          ContactOrdering::Coloured});
+                                          ContactOrdering::Coloured, ContactOrdering::LoadAscending});
   round_trip(std::vector<StepRule>{StepRule::SelfAdaptive, StepRule::Fixed});
   round_trip(std::vector<EgSecondStep>{EgSecondStep::Predictor, EgSecondStep::Korpelevich});
   // the catalogue offers exactly the enum's names, its default among them

@@ -242,6 +242,23 @@ TEST_CASE("nsgs options: omega, orderings, freezing, error evaluation", "[nsgs]"
       CHECK(ra != rc);
     }
   }
+  SECTION("load ordering: sorted once the loads form, then again from the caller's r") {
+    Solver a, b;
+    a.settings().ordering = b.settings().ordering = ContactOrdering::LoadAscending;
+    const Vector ra = check_converges(a), rb = check_converges(b);
+    CHECK(a.info().message.find("sorted by load") != std::string::npos);
+    CHECK(ra == rb);  // deterministic: ties are broken by the contact's index
+    // a warm start at the solution is kept: it converges before any sweep
+    Solver c;
+    c.settings().ordering = ContactOrdering::LoadAscending;
+    c.settings().tol = 1e-7;
+    c.compute(p);
+    Vector r = ra, u(p.size());
+    c.solve(r, u);
+    CHECK(c.info().converged());
+    CHECK(c.info().iterations == 0);
+    CHECK(r == ra);
+  }
   SECTION("freezing (re-checks frozen contacts before success) and no freezing") {
     for (int freezing : {0, 3, 10}) {
       Solver s;

@@ -45,7 +45,7 @@ TEST_CASE("nsgs sweeps do not allocate", "[nsgs][nomalloc]") {
   using P = local::Projection<Coulomb3D>;
   using PI = local::ProjectionIterative<Coulomb3D>;
   for (auto o : {ContactOrdering::Natural, ContactOrdering::ShuffledEachSweep,
-                 ContactOrdering::Coloured}) {
+                 ContactOrdering::Coloured, ContactOrdering::LoadAscending}) {
     solve_without_allocation<BlockSparseStorage<3>, E>(p, o, 1.0);
     solve_without_allocation<SparseStorage<3>, E>(p, o, 0.9);
     solve_without_allocation<DenseStorage<3>, E>(small, o, 1.1);

@@ -265,6 +265,21 @@ def test_nsgs_freeze_tol_reaches_the_solver_and_success_stays_a_full_error(tmp_p
     assert bad.returncode == 2 and "freeze_tol" in bad.stderr
 
 
+def test_nsgs_load_ordering_sorts_once_and_meets_tol(tmp_path):
+    # a generated pile: the load order is for scenes whose weight flows through the contacts
+    pile, out_file = tmp_path / "pile.hdf5", tmp_path / "r.hdf5"
+    gen = run("generate", "sphere-pile", "--contacts", "1000", "--seed", "5", "--local-out", pile)
+    assert gen.returncode == 0, gen.stderr
+    out = run("solve", pile, "--solver", "nsgs", "--ordering", "load", "--tol", "1e-6",
+              "--max-iter", "200000", "--out", out_file)
+    assert out.returncode == 0, out.stderr
+    assert "status=converged" in out.stdout and "sorted by load" in out.stdout
+    if have_shared:
+        with h5py.File(out_file) as f:
+            r = np.asarray(f["solution/r"])
+        assert fcref.error(fcref.load(str(pile)), r) <= 1e-6
+
+
 def test_global_solve_recovers_v(tmp_path):
     out_file = tmp_path / "gsol.hdf5"
     problem = BUNDLED / "Box_Stacks-i0035-31-0.hdf5"

@@ -32,8 +32,9 @@ inline std::vector<SettingSpec> common_settings(double omega) {
       real_setting("omega", omega, "over-relaxation r <- omega r_local + (1 - omega) r, in (0, 2)",
                    1e-6, 2 - 1e-6),
       enum_setting("ordering", d.ordering,
-                   "contact order: natural, shuffled once, reshuffled every sweep, or colour "
-                   "by colour (contacts of a colour in parallel)"),
+                   "contact order: natural, shuffled once, reshuffled every sweep, colour "
+                   "by colour (contacts of a colour in parallel), or by increasing load once "
+                   "the loads form (then from the start again)"),
       boolean_setting("shuffle", false, "same as --ordering shuffle"),
       integer_setting("seed", d.seed, "seed of the contact shuffles", 0, 4294967295.0),
       integer_setting("threads", d.threads,
