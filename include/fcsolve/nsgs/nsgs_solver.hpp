@@ -301,7 +301,7 @@ class Nsgs {
   /// solve starts again from the caller's r in that order, kept to the end.
   /// Starting again, not going on: on a pile of 10^4 spheres (FC/II, seed
   /// 903, tol 1e-6) going on from the natural order's iterate took 29 000 to
-  /// 46 000 sweeps (its reactions had formed along the natural order's
+  /// 73 000 sweeps (its reactions had formed along the natural order's
   /// paths), starting again 9472 (docs/results.md).
   static constexpr double kLoadSortError = 1e-2;
   static constexpr int kLoadSortSweeps = 1000;
