@@ -1,8 +1,9 @@
 // The solver catalogue seen from Python: every registered entry, its typed
 // settings, solve() with the GIL released, callbacks and Ctrl-C; and the
 // interior-point family's existence check and diagnostics when the library
-// has them. The only translation unit that includes solvers/catalog.hpp (it
-// instantiates every solver, the interior-point ones the check reuses).
+// has them. The only translation unit of the module that includes
+// solvers/catalog.hpp; the families themselves are compiled apart
+// (fcsolve_catalog), the interior-point ones the check reuses here.
 #include "bindings.hpp"
 #include "iteration_hook.hpp"
 

@@ -2,17 +2,28 @@
 // its entries in its own header (solvers/*_entries.hpp); this file lists the
 // families. Including it instantiates every registered solver, so only
 // programs that need run-time selection (CLI, Python, benchmarks) include it.
+//
+// With FCSOLVE_CATALOG_COMPILED defined (CMake target fcsolve_catalog sets
+// it for whatever links it), the families are not instantiated here but in
+// src/catalog.cpp, compiled once for the CLI, the Python module, the tests
+// and the benchmarks: each program that included the catalogue compiled it
+// again, 3 minutes a time on two cores. Every file of a program must see the
+// same mode.
 #pragma once
 
+#include <fcsolve/solvers/registry.hpp>
+#ifdef FCSOLVE_CATALOG_COMPILED
+#include <fcsolve/solvers/catalog_compiled.hpp>
+#else
 #include <fcsolve/solvers/admm_entries.hpp>
 #include <fcsolve/solvers/auto_entries.hpp>
 #include <fcsolve/solvers/fixed_point_entries.hpp>
 #include <fcsolve/solvers/nsgs_entries.hpp>
-#include <fcsolve/solvers/registry.hpp>
 #include <fcsolve/solvers/ipm_entries.hpp>
 #include <fcsolve/solvers/newton_entries.hpp>
 #include <fcsolve/solvers/ppa_entries.hpp>
 #include <fcsolve/solvers/vi_entries.hpp>
+#endif
 
 #include <memory>
 #include <mutex>
@@ -23,19 +34,25 @@
 namespace fcsolve {
 namespace registry {
 
+#ifdef FCSOLVE_CATALOG_COMPILED
+namespace families = ::fcsolve::registry::compiled;  // src/catalog.cpp
+#else
+namespace families = ::fcsolve::registry;  // solvers/*_entries.hpp, inline
+#endif
+
 inline const std::vector<SolverEntry>& entries() {
   static const std::vector<SolverEntry> all = [] {
     std::vector<SolverEntry> v;
     // Each solver family appends its entries here.
-    add_nsgs_solvers(v);
-    add_vi_solvers(v);
-    add_newton_solvers(v);
-    add_ipm_solvers(v);
-    add_ppa_solvers(v);
-    add_fixed_point_solvers(v);
-    add_admm_solvers(v);
+    families::add_nsgs_solvers(v);
+    families::add_vi_solvers(v);
+    families::add_newton_solvers(v);
+    families::add_ipm_solvers(v);
+    families::add_ppa_solvers(v);
+    families::add_fixed_point_solvers(v);
+    families::add_admm_solvers(v);
     // `auto` runs the entries above by name (solvers/auto_entries.hpp).
-    add_auto_solvers(v);
+    families::add_auto_solvers(v);
     return v;
   }();
   return all;
