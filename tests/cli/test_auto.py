@@ -192,6 +192,14 @@ def test_full_newton_steps_that_stall_near_tol_are_finished_by_sweeps(tmp_path):
     check_stages(res)
     stages = res["stages"]
     k = next(k for k, st in enumerate(stages) if st["stage"] == "newton-full")
+    if stages[k]["status"] == "converged":
+        # Round-off decides whether the steps hover above tol and stall (the
+        # 2-core AMD EPYC this was written on) or land below it (an Intel
+        # Xeon, other BLAS kernels: 54-56 steps to 5e-9 to 9e-9, 2026-12-07):
+        # then there is nothing to hand over, and the run ends there.
+        assert k == len(stages) - 1, res["message"]
+        assert independent_error(local, sol) <= 1e-8
+        return
     assert stages[k]["status"] == "stalled" and 1e-8 < stages[k]["error"] <= 1e-7, res["message"]  # the premise
     assert stages[k + 1]["stage"] == "nsgs" and "x tol" in stages[k + 1]["why"], res["message"]
     assert stages[k + 1]["iterations"] <= 50 and k + 1 == len(stages) - 1, res["message"]
