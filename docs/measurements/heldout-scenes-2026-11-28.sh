@@ -9,6 +9,8 @@
 #   parameter sets, never used for tuning either.
 #   ROUND=3 bash ...: the third (2026-11-29, later), seeds 501-516, with the
 #   mixed-shapes scene (spheres and boxes) that no solver was tuned on.
+#   ROUND=4 bash ...: the fourth (2026-12-07), seeds 601-620, after the
+#   changes of stops 57-60, as a check that they generalise.
 # Columns: file, wall seconds (process), exit code, status, solver,
 # iterations, error, seconds | fcref.
 set -u
@@ -43,6 +45,16 @@ if [[ "${ROUND:-1}" == 3 ]]; then
     "sphere-pile 800 0.9 1 0.1 507" "box-stack 150 0.7 1 0 508" "wall 600 1.0 10 0 509" "tower 700 0.6 1 0 510"
     "heavy-on-light 200 0.4 10000 0.1 511" "fem-block 300 0.7 1 0 512" "fem-two-bodies 400 0.8 10 0 513"
     "sphere-pile 6 0.5 1 0 514" "box-stack 4 1.0 1 0 515" "mixed-shapes 10 0.5 1 0 516")
+fi
+if [[ "${ROUND:-1}" == 4 ]]; then
+  SPECS=(
+    "sphere-pile 250 0.6 1 0 601" "sphere-pile 2500 1.2 1 0.1 602" "sphere-pile 8000 0.5 1 0 603"
+    "box-stack 12 0.9 1 0.05 604" "box-stack 400 0.4 10000 0 605" "wall 150 0.3 1 0.1 606"
+    "wall 2000 1.8 1 0 607" "tower 90 0.5 1 0.2 608" "tower 1500 0.7 100 0 609"
+    "heavy-on-light 60 1.5 10000 0 610" "heavy-on-light 900 0.6 100 0.1 611" "mixed-shapes 120 1.4 1 0.05 612"
+    "mixed-shapes 2000 0.5 10 0 613" "fem-block 150 1.0 1 0 614" "fem-block 1400 0.5 1 0 615"
+    "fem-two-bodies 150 0.3 1 0 616" "fem-two-bodies 1500 0.9 1 0 617" "sphere-pile 20 0.0 1 0 618"
+    "box-stack 6 2.0 1000 0 619" "wall 400 0.0 1 0.1 620")
 fi
 for spec in "${SPECS[@]}"; do
   set -- $spec
