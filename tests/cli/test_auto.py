@@ -196,9 +196,9 @@ def test_full_newton_steps_that_stall_near_tol_are_finished_by_sweeps(tmp_path):
     k = next(k for k, st in enumerate(stages) if st["stage"] == "newton-full")
     if stages[k]["status"] == "converged":
         # Round-off decides whether the steps hover above tol and stall (the
-        # 2-core AMD EPYC this was written on) or land below it (an Intel
-        # Xeon, other BLAS kernels: 54-56 steps to 5e-9 to 9e-9, 2026-12-07):
-        # then there is nothing to hand over, and the run ends there.
+        # 2-core AMD EPYC this was written on) or land below it (a 2-core
+        # Intel Xeon, 2026-12-07, old and new binaries alike: 54-56 steps to
+        # 5e-9 to 9e-9): then there is nothing to hand over, the run ends there.
         assert k == len(stages) - 1, res["message"]
         assert independent_error(local, sol) <= 1e-8
         return

@@ -199,9 +199,9 @@ inline constexpr int kFullStepStallWindow = 12;
 /// error is at most this fraction of its own starting error: the stall
 /// window's measure of progress (halving). From a nearly equal iterate it
 /// takes nearly the same steps and stalls again. Measured (held-out pile of
-/// 7995 contacts, seed 603, tol 1e-8, 20 s, 2026-12-07): 500 sweeps between
-/// the two Newton rounds lowered 8.93e-5 to 8.84e-5, and the second round
-/// took 4.1 s to reach 8.70e-5 (docs/results.md).
+/// 7995 contacts, seed 603, tol 1e-8, 20 s, 2026-12-07): the line search
+/// stalled from 9.1e-5, 500 sweeps reached 8.8e-5, and it ran again for
+/// 2.0 s to 8.7e-5; the rule skips that run (docs/results.md).
 inline constexpr double kNewtonRestartGain = 0.5;
 inline constexpr int kNewtonMaxIter = 300;
 /// Full Newton steps that lowered the error by kFastPhaseReduction or
