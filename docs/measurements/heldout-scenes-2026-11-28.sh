@@ -11,6 +11,9 @@
 #   mixed-shapes scene (spheres and boxes) that no solver was tuned on.
 #   ROUND=4 bash ...: the fourth (2026-12-07), seeds 601-620, after the
 #   changes of stops 57-60, as a check that they generalise.
+#   ROUND=5 bash ...: the fifth (2026-12-07, stop 62), seeds 701-720, after
+#   the sweeps got back the time of an interior point that did not pay;
+#   more large piles (the kind that change touched), chosen before any run.
 # Columns: file, wall seconds (process), exit code, status, solver,
 # iterations, error, seconds | fcref.
 set -u
@@ -55,6 +58,15 @@ if [[ "${ROUND:-1}" == 4 ]]; then
     "mixed-shapes 2000 0.5 10 0 613" "fem-block 150 1.0 1 0 614" "fem-block 1400 0.5 1 0 615"
     "fem-two-bodies 150 0.3 1 0 616" "fem-two-bodies 1500 0.9 1 0 617" "sphere-pile 20 0.0 1 0 618"
     "box-stack 6 2.0 1000 0 619" "wall 400 0.0 1 0.1 620")
+fi
+if [[ "${ROUND:-1}" == 5 ]]; then
+  SPECS=(
+    "sphere-pile 6000 0.7 1 0 701" "sphere-pile 4000 0.4 1 0.05 702" "sphere-pile 1500 1.0 1 0 703"
+    "sphere-pile 300 0.2 10 0 704" "box-stack 100 1.5 1 0 705" "box-stack 2000 0.3 1 0.1 706"
+    "wall 1000 0.9 1 0 707" "wall 250 1.2 100 0.05 708" "tower 300 1.5 1 0 709" "tower 2500 0.3 1 0.1 710"
+    "heavy-on-light 150 0.8 10000 0 711" "heavy-on-light 1500 0.4 1000 0.05 712" "mixed-shapes 600 0.9 1 0 713"
+    "mixed-shapes 5000 0.5 1 0.05 714" "fem-block 600 0.8 1 0 715" "fem-two-bodies 800 0.5 1 0 716"
+    "sphere-pile 12 1.0 1 0 717" "box-stack 5 0.0 1 0 718" "wall 80 0.6 1000 0 719" "sphere-pile 10000 0.5 1 0 720")
 fi
 for spec in "${SPECS[@]}"; do
   set -- $spec
