@@ -194,8 +194,8 @@ inline constexpr double kInteriorPointStepsWorthSweeping = 20;
 /// the resumed chunks slowed by 2.5x, then 1.2x, and finished.
 inline constexpr double kPlateauSlowdown = 4;
 /// An interior point that lowered the best error by less than this factor
-/// did not pay: the sweeps still keeping their rate get its time back
-/// (Plan::sweeps_match_interior_point). Halving, as the Newton stall
+/// did not pay: the sweeps, if their last chunk still lowered the error,
+/// get its time back (Plan::sweeps_match_interior_point). Halving, as the Newton stall
 /// window measures progress.
 inline constexpr double kInteriorPointGain = 2;
 /// Newton: iterations without halving the best error that count as a stall.
