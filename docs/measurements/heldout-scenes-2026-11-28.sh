@@ -14,6 +14,9 @@
 #   ROUND=5 bash ...: the fifth (2026-12-07, stop 62), seeds 701-720, after
 #   the sweeps got back the time of an interior point that did not pay;
 #   more large piles (the kind that change touched), chosen before any run.
+#   ROUND=6 bash ...: the sixth (2026-12-07, stop 63), seeds 801-820, after
+#   the interior point's crawl guard moved to one decade; chosen before any
+#   run, piles of 900 to 12 000 among them (the kind that change touched).
 # Columns: file, wall seconds (process), exit code, status, solver,
 # iterations, error, seconds | fcref.
 set -u
@@ -67,6 +70,15 @@ if [[ "${ROUND:-1}" == 5 ]]; then
     "heavy-on-light 150 0.8 10000 0 711" "heavy-on-light 1500 0.4 1000 0.05 712" "mixed-shapes 600 0.9 1 0 713"
     "mixed-shapes 5000 0.5 1 0.05 714" "fem-block 600 0.8 1 0 715" "fem-two-bodies 800 0.5 1 0 716"
     "sphere-pile 12 1.0 1 0 717" "box-stack 5 0.0 1 0 718" "wall 80 0.6 1000 0 719" "sphere-pile 10000 0.5 1 0 720")
+fi
+if [[ "${ROUND:-1}" == 6 ]]; then
+  SPECS=(
+    "sphere-pile 3500 0.6 1 0 801" "sphere-pile 7000 0.3 1 0 802" "sphere-pile 900 0.8 100 0.05 803"
+    "box-stack 300 1.0 1 0 804" "box-stack 3000 0.5 10 0 805" "wall 500 0.4 1 0.1 806" "wall 1500 1.0 1 0 807"
+    "tower 200 0.8 10 0 808" "tower 3000 1.2 1 0 809" "heavy-on-light 40 0.3 1000 0 810"
+    "heavy-on-light 2000 1.0 10000 0 811" "mixed-shapes 300 0.7 1 0.1 812" "mixed-shapes 3500 0.8 1 0 813"
+    "fem-block 300 0.6 1 0 814" "fem-block 2000 0.4 1 0 815" "fem-two-bodies 400 1.5 1 0 816"
+    "sphere-pile 100 2.0 1 0 817" "box-stack 30 0.5 1 0.2 818" "wall 60 1.5 10 0 819" "sphere-pile 12000 0.6 1 0 820")
 fi
 for spec in "${SPECS[@]}"; do
   set -- $spec
