@@ -6,6 +6,7 @@ message; it honours --max-time without claiming a false convergence; and it
 is deterministic for a given input and settings."""
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -82,6 +83,21 @@ def check_stages(res):
     assert res["error"] <= min(errors) * (1 + 1e-6) + 1e-12
     check_no_newton_stage_repeats_a_stall(res["stages"])
     check_sweeps_matching_the_interior_point(res["stages"])
+    check_singular_route(res)
+
+
+SINGULAR_CONTACT_RATIO = 1.1  # kSingularContactRatio in auto_entries.hpp
+
+
+def check_singular_route(res):
+    """Only FC/I with d nc / n above kSingularContactRatio goes from the
+    warm sweeps straight to Newton ("W singular"); FC/II, whose ratio the
+    plan does not know, and FC/I at or below it (sphere piles: 1.00 to
+    1.01) go through the sweeps' chunks."""
+    if not any("W singular" in st["why"] for st in res["stages"]):
+        return
+    m = re.search(r"d\*nc/n=([0-9.eE+-]+)", res["message"])
+    assert m and float(m.group(1)) > SINGULAR_CONTACT_RATIO, res["message"]
 
 
 def check_no_newton_stage_repeats_a_stall(stages):
@@ -383,6 +399,32 @@ def test_sweeps_get_the_time_of_an_interior_point_that_did_not_pay(tmp_path):
     assert stages[k - 1]["stage"] == "ipm", stages
     before = min(st["error"] for st in stages[:k - 1])
     assert stages[k]["error"] < 0.5 * before, stages  # the sweeps paid
+
+
+def test_sphere_pile_as_fc1_goes_through_the_sweeps_chunks(tmp_path):
+    # a sphere pile has two contacts a sphere: d nc / n = 1.01 here, W nearly
+    # of full rank. Given as FC/I it goes through the sweeps' chunks before
+    # Newton, as its FC/II form does (before: straight to Newton, "W
+    # singular"); a box stack (d nc / n = 2) still takes that route
+    pile = tmp_path / "pile.hdf5"
+    g = run("generate", "sphere-pile", "--contacts", 300, "--seed", 941, "--out", pile)
+    assert g.returncode == 0, g.stderr
+    sol = tmp_path / "sol.hdf5"
+    code, res = solve_json(pile, out=sol)
+    assert code == 0 and res["status"] == "converged", res["message"]
+    check_stages(res)
+    ratio = float(re.search(r"d\*nc/n=([0-9.eE+-]+)", res["message"]).group(1))
+    assert 1 <= ratio <= SINGULAR_CONTACT_RATIO, res["message"]  # the premise
+    stages = res["stages"]
+    k = next(k for k, st in enumerate(stages) if st["stage"] == "newton-full")
+    assert any("predicts" in st["why"] for st in stages[:k]), res["message"]
+    assert independent_error(pile, sol) <= 1e-8
+    stack = tmp_path / "stack.hdf5"
+    g = run("generate", "box-stack", "--contacts", 200, "--seed", 941, "--out", stack)
+    assert g.returncode == 0, g.stderr
+    code, res = solve_json(stack)
+    check_stages(res)
+    assert any("W singular" in st["why"] for st in res["stages"]), res["message"]
 
 
 def test_interior_point_stage_stops_when_it_crawls(tmp_path):

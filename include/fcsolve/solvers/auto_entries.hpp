@@ -198,6 +198,15 @@ inline constexpr double kPlateauSlowdown = 4;
 /// get its time back (Plan::sweeps_match_interior_point). Halving, as the Newton stall
 /// window measures progress.
 inline constexpr double kInteriorPointGain = 2;
+/// FC/I with d nc / n above this goes from the warm sweeps straight to
+/// Newton: W = H M^-1 H^T is singular with a null space of at least
+/// d nc - n, the reactions are not unique and the sweeps plateau (box
+/// stacks 2, walls 3 to 3.7, mixed shapes 1.4 to 1.5). A sphere pile sits
+/// at 1.00 to 1.01 (two contacts a sphere): its W is nearly of full rank,
+/// and its FC/II form, which the sweeps' chunks decide for, did better on
+/// five of the eight held-out piles of 1500 to 7000 contacts
+/// (docs/results.md, 2026-12-07, stop 63).
+inline constexpr double kSingularContactRatio = 1.1;
 /// Newton: iterations without halving the best error that count as a stall.
 inline constexpr int kNewtonStallWindow = 25;
 /// The same for full Newton steps: they either contract fast or not at all.
@@ -842,9 +851,9 @@ class Plan : private StagedRun<LocalProblemView> {
     // mass ratio 100: 5 to 18 steps, 6x faster than the interior point
     // first; docs/results.md, 2026-11-27).
     std::string why_newton;
-    if (f_.global && f_.contact_ratio > 1)
-      why_newton = "d*nc/n = " + number(f_.contact_ratio) +
-                   " > 1: W singular (reactions not unique), sweeps plateau";
+    if (f_.global && f_.contact_ratio > kSingularContactRatio)
+      why_newton = "d*nc/n = " + number(f_.contact_ratio) + " > " + number(kSingularContactRatio) +
+                   ": W singular (reactions not unique), sweeps plateau";
     // Sweeps go on, in doubling chunks, while the rate measured on the last
     // chunk predicts tol within what is left of the allowance: Gauss-Seidel
     // usually slows down as it goes, and a chunk that shows it hands over
