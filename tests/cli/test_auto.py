@@ -89,6 +89,12 @@ def check_stages(res):
 SINGULAR_CONTACT_RATIO = 1.1  # kSingularContactRatio in auto_entries.hpp
 
 
+def contact_ratio(res):
+    """d nc / n of an FC/I run, from the features in its message (None: FC/II)."""
+    m = re.search(r"d\*nc/n=([0-9.eE+-]+)", res["message"])
+    return float(m.group(1)) if m else None
+
+
 def check_singular_route(res):
     """Only FC/I with d nc / n above kSingularContactRatio goes from the
     warm sweeps straight to Newton ("W singular"); FC/II, whose ratio the
@@ -96,8 +102,8 @@ def check_singular_route(res):
     1.01) go through the sweeps' chunks."""
     if not any("W singular" in st["why"] for st in res["stages"]):
         return
-    m = re.search(r"d\*nc/n=([0-9.eE+-]+)", res["message"])
-    assert m and float(m.group(1)) > SINGULAR_CONTACT_RATIO, res["message"]
+    ratio = contact_ratio(res)
+    assert ratio is not None and ratio > SINGULAR_CONTACT_RATIO, res["message"]
 
 
 def check_no_newton_stage_repeats_a_stall(stages):
@@ -413,8 +419,8 @@ def test_sphere_pile_as_fc1_goes_through_the_sweeps_chunks(tmp_path):
     code, res = solve_json(pile, out=sol)
     assert code == 0 and res["status"] == "converged", res["message"]
     check_stages(res)
-    ratio = float(re.search(r"d\*nc/n=([0-9.eE+-]+)", res["message"]).group(1))
-    assert 1 <= ratio <= SINGULAR_CONTACT_RATIO, res["message"]  # the premise
+    ratio = contact_ratio(res)
+    assert ratio is not None and 1 <= ratio <= SINGULAR_CONTACT_RATIO, res["message"]  # the premise
     stages = res["stages"]
     k = next(k for k, st in enumerate(stages) if st["stage"] == "newton-full")
     assert any("predicts" in st["why"] for st in stages[:k]), res["message"]

@@ -24,10 +24,11 @@
 //              from the symbolic analysis of W's LU (at most a thousand
 //              sweeps; once it is spent, one last chunk of one step's
 //              sweeps where they predict tol within a quarter of a step),
-//              and not at all on FC/I with d nc > n: W is then
-//              singular, the reactions are not unique and Gauss-Seidel
-//              plateaus (measured: spheres-in-a-box, d nc / n = 1.3, NSGS
-//              stuck at 6e-8).
+//              and not at all on FC/I with d nc / n above
+//              kSingularContactRatio (1.1): W is then singular, the
+//              reactions are not unique and Gauss-Seidel plateaus
+//              (measured: spheres-in-a-box, d nc / n = 1.3, NSGS stuck at
+//              6e-8); sphere piles (1.00 to 1.01) take the sweeps' chunks.
 //   2 newton   semismooth Newton on Alart-Curnier (`nsn-ac`, the entry that
 //              solves every shared problem, docs/results.md): full steps
 //              from the sweeps' iterate (local superlinear convergence);
