@@ -437,7 +437,8 @@ int cmd_check(Args args) {
             << " witness_norm=" << fmt(ex.witness_norm, "%.6e") << " margin=" << fmt(ex.margin, "%.6e")
             << " check_status=" << to_string(ex.info.status) << "\n";
   std::cout << (global ? "contact_ratio=" + fmt(dg.contact_ratio, "%.4g") + " rank_H=" : "rank_W=")
-            << dg.rank_H << "/" << dg.columns_H << " lambda_min_W=" << fmt(dg.lambda_min_W)
+            << (dg.rank_H >= 0 ? std::to_string(dg.rank_H) : std::string("nan")) << "/" << dg.columns_H
+            << " lambda_min_W=" << fmt(dg.lambda_min_W)
             << " lambda_max_W=" << fmt(dg.lambda_max_W) << " cond_W=" << fmt(dg.cond_W)
             << " asymmetry_W=" << fmt(dg.asymmetry_W) << "\n";
   return kExitSolved;

@@ -331,6 +331,26 @@ TEST_CASE("Rank-deficient H: duplicated contacts", "[ipm][rank]") {
   }
 }
 
+TEST_CASE("Diagnostics above the size limit skip the rank and the spectrum", "[ipm][rank]") {
+  // 1001 bodies of 3 translational dofs, each on the floor through one
+  // contact (H = I, m = 3003 > kDiagnosticsDenseLimit): the sparse QR that
+  // would take minutes on a pile of that size is not run; d nc / n is.
+  const Index nc = kDiagnosticsDenseLimit / 3 + 1;
+  GlobalProblem g;
+  g.M.resize(3 * nc, 3 * nc);
+  g.M.setIdentity();
+  g.H = g.M;
+  g.H.makeCompressed();
+  g.w = Vector::Zero(3 * nc);
+  g.f = Vector::Constant(3 * nc, -1.0);
+  g.mu = Vector::Constant(nc, 0.5);
+  const auto big = diagnose(g);
+  CHECK(big.rank_H == -1);
+  CHECK(big.columns_H == 3 * nc);
+  CHECK(big.contact_ratio == 1.0);
+  CHECK(std::isnan(big.cond_W));  // the rank below the limit: the test above
+}
+
 TEST_CASE("Frictionless contacts (mu = 0): the normal complementarity", "[ipm][frictionless]") {
   // A contact with mu = 0 keeps its Lorentz block without the tangential
   // coupling (form_common.hpp, frictionless()): r_T = 0 exactly, and

@@ -145,3 +145,22 @@ def test_bad_options_exit_2(tmp_path, args, message):
     assert p.returncode == 2, (p.stdout, p.stderr)
     assert message in p.stderr
     assert not (tmp_path / "x.hdf5").exists()
+
+
+def test_check_on_a_pile_above_the_diagnostics_limit(tmp_path):
+    # a generated pile of 1100 contacts (m = 3300 > 3000): `check` answers
+    # the existence question and d nc / n, and leaves out the rank and the
+    # spectrum, whose sparse QR and dense eigensolver take minutes at piles
+    # of 5000 (docs/results.md, stop 64)
+    out, local, _ = generate(tmp_path, "sphere-pile", contacts=1100)
+    for path, rank in ((out, "rank_H"), (local, "rank_W")):
+        p = run("check", path, "--json")
+        assert p.returncode == 0, p.stderr
+        d = json.loads(p.stdout)
+        assert d["m"] > 3000 and d[rank] == -1 and d["cond_W"] is None, d
+        assert d["verdict"] in ("solution-exists", "not-established"), d
+        text = run("check", path)
+        assert text.returncode == 0, text.stderr
+        assert f"{rank}=nan/{d['m']}" in text.stdout, text.stdout
+        if rank == "rank_H":
+            assert 1.0 <= d["contact_ratio"] < 1.1, d  # two contacts a sphere

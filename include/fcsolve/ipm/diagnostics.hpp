@@ -23,7 +23,7 @@ namespace ipm {
 
 struct ProblemDiagnostics {
   double contact_ratio = std::numeric_limits<double>::quiet_NaN();  ///< d nc / n (global only)
-  Index rank_H = -1;           ///< estimated rank of H (global) or W (local); -1 not computed
+  Index rank_H = -1;           ///< estimated rank of H (global) or W (local); -1 not computed (m > kDiagnosticsDenseLimit)
   Index columns_H = 0;         ///< m
   double lambda_min_W = std::numeric_limits<double>::quiet_NaN();  ///< of (W + W^T) / 2
   double lambda_max_W = std::numeric_limits<double>::quiet_NaN();
@@ -31,7 +31,11 @@ struct ProblemDiagnostics {
   double asymmetry_W = 0;      ///< ||W - W^T||_F / ||W||_F
 };
 
-/// Largest m for which the spectrum of W is computed (dense eigensolver).
+/// Largest m for which the spectrum of W (dense eigensolver) and the rank
+/// of H or W (column-pivoted sparse QR) are computed. The QR's fill grows
+/// fast on piles: measured (`fcsolve check`, docs/results.md, stop 64) 2.8 s
+/// at 3003 columns, 87 s at 9018 and 6.9 minutes at 15 030; above the limit
+/// d nc / n still bounds the rank deficiency from below (global).
 inline constexpr Index kDiagnosticsDenseLimit = 3000;
 
 namespace detail {
@@ -63,8 +67,8 @@ ProblemDiagnostics diagnose(const GlobalProblemView& p) {
   ProblemDiagnostics d;
   d.contact_ratio = double(p.d) * double(p.num_contacts()) / double(p.num_dofs());
   d.columns_H = p.size();
-  d.rank_H = detail::sparse_rank(SparseMatrix(p.H));
   if (p.size() <= kDiagnosticsDenseLimit) {
+    d.rank_H = detail::sparse_rank(SparseMatrix(p.H));
     GlobalReduction<Backend> reduction(p);
     detail::spectrum(reduction.local().W, d);
   }
@@ -75,7 +79,7 @@ inline ProblemDiagnostics diagnose(const LocalProblemView& p) {
   ProblemDiagnostics d;
   d.columns_H = p.size();
   const SparseMatrix W(p.W);
-  d.rank_H = detail::sparse_rank(W);
+  if (W.rows() <= kDiagnosticsDenseLimit) d.rank_H = detail::sparse_rank(W);
   detail::spectrum(W, d);
   return d;
 }
