@@ -17,6 +17,9 @@
 #   ROUND=6 bash ...: the sixth (2026-12-07, stop 63), seeds 801-820, after
 #   the interior point's crawl guard moved to one decade; chosen before any
 #   run, piles of 900 to 12 000 among them (the kind that change touched).
+#   ROUND=7 bash ...: the seventh (2026-12-07, stop 64), seeds 1001-1020
+#   (9xx are development seeds), after stop 63's crawl guard and FC/I pile
+#   route; chosen before any run, FC/I piles among them.
 # Columns: file, wall seconds (process), exit code, status, solver,
 # iterations, error, seconds | fcref.
 set -u
@@ -79,6 +82,16 @@ if [[ "${ROUND:-1}" == 6 ]]; then
     "heavy-on-light 2000 1.0 10000 0 811" "mixed-shapes 300 0.7 1 0.1 812" "mixed-shapes 3500 0.8 1 0 813"
     "fem-block 300 0.6 1 0 814" "fem-block 2000 0.4 1 0 815" "fem-two-bodies 400 1.5 1 0 816"
     "sphere-pile 100 2.0 1 0 817" "box-stack 30 0.5 1 0.2 818" "wall 60 1.5 10 0 819" "sphere-pile 12000 0.6 1 0 820")
+fi
+if [[ "${ROUND:-1}" == 7 ]]; then
+  SPECS=(
+    "sphere-pile 2500 0.5 1 0 1001" "sphere-pile 5000 0.9 1 0.1 1002" "sphere-pile 600 0.3 10 0 1003"
+    "box-stack 800 0.6 1 0 1004" "box-stack 60 1.8 100 0 1005" "wall 2000 0.7 1 0.05 1006" "wall 150 0.3 1 0 1007"
+    "tower 1000 0.9 1 0 1008" "tower 80 2.0 1 0.1 1009" "heavy-on-light 300 0.5 10000 0 1010"
+    "heavy-on-light 1000 1.2 100 0 1011" "mixed-shapes 1200 0.6 1 0 1012" "mixed-shapes 80 1.0 10 0.1 1013"
+    "fem-block 800 0.7 1 0 1014" "fem-two-bodies 1000 0.4 1 0 1015" "fem-two-bodies 200 1.2 1 0 1016"
+    "sphere-pile 8000 0.4 1 0 1017" "box-stack 12 0.9 1 0 1018" "sphere-pile 30 1.2 1 0.2 1019"
+    "sphere-pile 2000 0.7 1000 0 1020")
 fi
 for spec in "${SPECS[@]}"; do
   set -- $spec
