@@ -109,8 +109,8 @@ class _Problem:
     def diagnostics(self):
         """Structural diagnostics that bear on solver robustness, as a dict:
         rank of H (global: rank_H, with contact_ratio = d nc / n; c > 1 forces
-        a rank-deficient H) or of W (local: rank_W; -1 when m > 3000, where
-        the sparse QR would take minutes), m, the extreme
+        a rank-deficient H) or of W (local: rank_W; -1 when m > 3000: the
+        sparse QR's cost grows to minutes on piles of 5000), m, the extreme
         eigenvalues and condition number of the symmetric part of W
         (lambda_min_W, lambda_max_W, cond_W; NaN when m > 3000) and the
         relative asymmetry of W. A global problem is reduced to get W.
