@@ -466,6 +466,74 @@ TEST_CASE("Existence check: Slater's assumption", "[ipm][existence]") {
   }
 }
 
+namespace {
+
+/// Both programs of an FC/II check: the global form with H^T = W and the
+/// reduced form of a dense W (existence_check.hpp); each witness certified
+/// here against W and q.
+void check_both_forms(const LocalProblem& p, bool exists) {
+  const ExistenceReport global =
+      ipm::detail::solve_existence<Coulomb3D, DefaultBackend>(SparseMatrix(p.W.transpose()), p.q, p.mu, 1e-10);
+  const ExistenceReport reduced = ipm::detail::solve_existence_dense<Coulomb3D>(p.W, p.q, p.mu, 1e-10);
+  for (const ExistenceReport* rep : {&global, &reduced}) {
+    CAPTURE(rep == &reduced, rep->info.message);
+    CHECK(rep->slater == exists);
+    if (exists) {
+      CHECK(rep->x > 0);
+      const Vector u = p.W * rep->witness + p.q;
+      double margin = std::numeric_limits<double>::infinity();
+      for (Index a = 0; a < p.num_contacts(); ++a)
+        margin = std::min(margin, u[3 * a] - p.mu[a] * u.segment<2>(3 * a + 1).norm());
+      CHECK(margin > 1e-9 * u.cwiseAbs().maxCoeff());
+      CHECK(margin == Approx(rep->margin).margin(1e-12 * u.cwiseAbs().maxCoeff()));
+    } else {
+      CHECK(rep->info.converged());
+      CHECK(std::abs(rep->x) <= 1e-6);
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Existence check of FC/II with a dense W: the reduced program", "[ipm][existence]") {
+  std::mt19937 gen(7);
+  std::normal_distribution<double> normal;
+  const int nc = 20, m = 3 * nc;
+  const Vector mu = Vector::Constant(nc, 0.4);
+  const auto random = [&](Index rows, Index cols) {
+    DenseMatrix B(rows, cols);
+    for (Index j = 0; j < cols; ++j)
+      for (Index i = 0; i < rows; ++i) B(i, j) = normal(gen);
+    return B;
+  };
+  SECTION("W of rank m / 2, q = W r0 + u0 with u0 inside K*: a solution exists") {
+    const DenseMatrix B = random(m, m / 2);
+    const DenseMatrix W = B * B.transpose();
+    Vector u0 = Vector::Zero(m);
+    for (Index a = 0; a < nc; ++a) u0.segment<3>(3 * a) << 1.0, 0.1, -0.2;
+    const Vector q = W * random(m, 1).col(0) + u0;
+    const LocalProblem p = fcsolve_test::make_local(3, W, q, mu);
+    const ExistenceReport rep = check_existence(p);  // fill 1: the reduced form
+    CHECK(rep.slater);
+    check_both_forms(p, true);
+  }
+  SECTION("u_N of contacts 0 and 1 sum to -2 whatever r: none exists") {
+    DenseMatrix B = random(m, m / 2);
+    B.row(3) = -B.row(0);
+    const DenseMatrix W = B * B.transpose();
+    Vector q = random(m, 1).col(0);
+    q[0] = -1;
+    q[3] = -1;
+    const LocalProblem p = fcsolve_test::make_local(3, W, q, mu);
+    CHECK_FALSE(check_existence(p).slater);
+    check_both_forms(p, false);
+  }
+  SECTION("a rigid scene's FC/II through both programs") {
+    const auto p = std::get<LocalProblem>(fclib::read_problem(fcsolve_test::bundled("Rover1039.hdf5")));
+    check_both_forms(p, true);
+  }
+}
+
 TEST_CASE("Reported convergence always means FCLIB error <= tol", "[ipm][status]") {
   const auto g = std::get<GlobalProblem>(fclib::read_problem(fcsolve_test::bundled("CubeH8.hdf5")));
   SECTION("the associated (s = 0) problem is not a Coulomb solution") {

@@ -24,9 +24,25 @@
 // For FC/II (only W, q): {H^T v + w} = {W r + q : r in R^m} when
 // W = H^T M^-1 H and q = H^T M^-1 f + w (M SPD), so the same check runs with
 // H^T replaced by W (as given) and w by q.
+//
+// A dense W (an elastic body's FC/II) makes the global form's KKT matrix
+// hold W twice, and CHOLMOD's simplicial LDL^T factorises it without BLAS
+// (a FEM block's FC/II of 2352 columns: over 5 minutes). There the program
+// is solved in its reduced form instead (solve_existence_dense): with any L
+// such that W = L L^T (never formed) in the place of H^T, range(L) =
+// range(W), and the FC/II reduction of the homogenised program,
+//   W' = H'^T H' = [W / h^2 0; 0 0] + c_t c_t^T + c_x c_x^T,   q' = c_x,
+//   c_t = (w~, e_N of the extra contact),  c_x = (-a, -e_N of the extra contact)
+// (the columns of H'^T acting on t and x; h^2 = max_j W_jj, L's largest row
+// norm squared), needs W only; v = H' r' + f gives t = c_t . r',
+// x = 1 + c_x . r', and the witness r = r'_m / (h^2 t') has
+// W r = L v~ / (h t'). Its K = W's + P^-1 T^2 is positive definite: dense
+// Cholesky (DenseCholeskyKktFactorization).
 #pragma once
 
+#include <fcsolve/ipm/local_form.hpp>
 #include <fcsolve/ipm/socqp_ipm.hpp>
+#include <fcsolve/problem/local_problem.hpp>
 
 #include <cmath>
 #include <limits>
@@ -44,7 +60,38 @@ struct ExistenceReport {
   SolverInfo info;            ///< of the interior-point solve
 };
 
+/// W's fill (nnz / m^2) from which the FC/II check runs on the reduced form
+/// with dense Cholesky (solve_existence_dense). A FEM body's W is full; a
+/// rigid pile's holds some 50 blocks a row.
+inline constexpr double kDenseRangeFill = 0.3;
+
 namespace detail {
+
+/// The certificate: u = H^T v + w (or W r + q) at the witness strictly
+/// inside K*, with margin min_a (u_N - mu ||u_T||) > 1e-9 ||u||inf.
+template <int D>
+void certify(ExistenceReport& rep, const Vector& u, const Eigen::Ref<const Vector>& mu, double tau) {
+  rep.witness_norm = rep.witness.norm();
+  rep.margin = std::numeric_limits<double>::infinity();
+  for (Index a = 0; a < mu.size(); ++a)
+    rep.margin = std::min(rep.margin, u[a * D] - mu[a] * u.template segment<D - 1>(a * D + 1).norm());
+  const double scale = u.size() ? u.cwiseAbs().maxCoeff() : 0.0;
+  rep.slater = tau > 0 && rep.margin > 1e-9 * scale;
+}
+
+/// The interior point's settings for the homogenised program.
+inline IpmSettings existence_settings(double tol) {
+  IpmSettings s;
+  s.tol = tol;
+  s.max_iter = 100;
+  // No natural-map polish: the verdict rests on the witness' certificate,
+  // not on the last digits of x*. Measured (docs/results.md, stop 64): the
+  // same verdicts, x* and margins on 94 of the 96 problems checked (the
+  // other two not established either way), and a pile of 5000 in 2.6 s
+  // instead of 51 s, spent in the polish's UMFPACK factorisations.
+  s.polish = false;
+  return s;
+}
 
 /// Builds the homogenised program (header comment) and solves it. `Ht_rows`
 /// is the n x m matrix whose transpose acts on v (H, or W^T).
@@ -85,16 +132,7 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   g.mu.resize(nc + 1);
   g.mu.head(nc) = mu;
   g.mu[nc] = 1;
-  IpmSettings s;
-  s.tol = tol;
-  s.max_iter = 100;
-  // No natural-map polish: the verdict rests on the witness' certificate,
-  // not on the last digits of x*. Measured (docs/results.md, stop 64): the
-  // same verdicts, x* and margins on 94 of the 96 problems checked (the
-  // other two not established either way), and a pile of 5000 in 2.6 s
-  // instead of 51 s, spent in the polish's UMFPACK factorisations.
-  s.polish = false;
-  GlobalSocqpIpm<Cone, SparseKktFactorization<Backend>> ipm(s);
+  GlobalSocqpIpm<Cone, SparseKktFactorization<Backend>> ipm(existence_settings(tol));
   ipm.compute(g);
   Vector r = Vector::Zero(g.size()), v(g.num_dofs());
   ExistenceReport rep;
@@ -103,28 +141,62 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   rep.x = v[xr];
   const double tau = v[tr] / omega;  // the t of the data's units
   rep.witness = tau > 0 ? Vector(v.head(n) / (h * tau)) : Vector(Vector::Zero(n));
-  rep.witness_norm = rep.witness.norm();
-  // Certificate: u = H^T v + w strictly inside K*.
-  const Vector u = Ht_rows.transpose() * rep.witness + w;
-  rep.margin = std::numeric_limits<double>::infinity();
-  for (Index a = 0; a < nc; ++a)
-    rep.margin = std::min(rep.margin, u[a * D] - mu[a] * u.template segment<D - 1>(a * D + 1).norm());
-  const double scale = u.size() ? u.cwiseAbs().maxCoeff() : 0.0;
-  rep.slater = tau > 0 && rep.margin > 1e-9 * scale;
+  certify<D>(rep, Vector(Ht_rows.transpose() * rep.witness + w), mu, tau);
   return rep;
 }
 
-/// Runs solve_existence for the problem's cone (d = 2 or 3).
-template <class Backend, class View>
-ExistenceReport check_existence_of(const View& p, const SparseMatrix& Ht_rows, const Vector& w,
-                                   double tol) {
+/// The FC/II check on the program's reduced form (header comment), for a
+/// dense W: no factor of W is formed, W' is W / h^2 plus two rank-one terms.
+template <class Cone>
+ExistenceReport solve_existence_dense(const SparseMatrix& W, const Vector& q, const Eigen::Ref<const Vector>& mu,
+                                      double tol) {
+  constexpr int D = Cone::dim;
+  const Index m = W.cols(), nc = mu.size(), mm = m + D;
+  const double wmax = W.size() ? W.diagonal().maxCoeff() : 0.0;
+  const double h2 = wmax > 0 ? wmax : 1.0;
+  const double qmax = q.size() ? q.cwiseAbs().maxCoeff() : 0.0;
+  const double omega = qmax > 0 ? qmax : 1.0;
+  Vector ct = Vector::Zero(mm), cx = Vector::Zero(mm);
+  ct.head(m) = q / omega;
+  ct[m] = 1;
+  for (Index a = 0; a < nc; ++a) cx[a * D] = -1;
+  cx[m] = -1;
+  DenseMatrix Wr = DenseMatrix::Zero(mm, mm);
+  Wr.topLeftCorner(m, m) = W.toDense() / h2;
+  Wr.noalias() += ct * ct.transpose();
+  Wr.noalias() += cx * cx.transpose();
+  LocalProblem reduced;
+  reduced.d = D;
+  reduced.W = Wr.sparseView();
+  reduced.W.makeCompressed();
+  Wr.resize(0, 0);
+  reduced.q = cx;
+  reduced.mu.resize(nc + 1);
+  reduced.mu.head(nc) = mu;
+  reduced.mu[nc] = 1;
+  LocalSocqpIpm<Cone, DenseCholeskyKktFactorization> ipm(existence_settings(tol));
+  ipm.compute(reduced);
+  Vector r = Vector::Zero(mm), u(mm);
+  ExistenceReport rep;
+  rep.info = ipm.solve(r, u);
+  rep.solver_error = rep.info.error;
+  rep.x = 1 + cx.dot(r);
+  const double tau = ct.dot(r) / omega;  // t of the data's units
+  rep.witness = tau > 0 ? Vector(r.head(m) / (h2 * tau)) : Vector(Vector::Zero(m));
+  certify<D>(rep, Vector(W * rep.witness + q), mu, tau);
+  return rep;
+}
+
+/// Runs `solve(cone)` for the problem's cone (d = 2 or 3).
+template <class View, class Solve>
+ExistenceReport with_friction_cone(const View& p, Solve&& solve) {
   validate(p);
   return dispatch_cone(p.d, [&](auto cone) -> ExistenceReport {
     using Cone = decltype(cone);
     if constexpr (Cone::dim == 1)
       throw UsageError("the existence check needs friction cones (d = 2 or 3)");
     else
-      return solve_existence<Cone, Backend>(Ht_rows, w, p.mu, tol);
+      return solve(cone);
   });
 }
 
@@ -133,14 +205,23 @@ ExistenceReport check_existence_of(const View& p, const SparseMatrix& Ht_rows, c
 /// Slater's assumption for FC/I: max x s.t. H^T v + w - a x in K*.
 template <class Backend = DefaultBackend>
 ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10) {
-  return detail::check_existence_of<Backend>(p, SparseMatrix(p.H), Vector(p.w), tol);
+  return detail::with_friction_cone(p, [&](auto cone) {
+    return detail::solve_existence<decltype(cone), Backend>(SparseMatrix(p.H), Vector(p.w), p.mu, tol);
+  });
 }
 
 /// The same for FC/II with H^T replaced by W: exists r with W r + q - a x in K*.
+/// A W of fill kDenseRangeFill or more goes to the reduced form (header).
 template <class Backend = DefaultBackend>
 ExistenceReport check_existence(const LocalProblemView& p, double tol = 1e-10) {
-  return detail::check_existence_of<Backend>(p, SparseMatrix(SparseMatrix(p.W).transpose()),
-                                             Vector(p.q), tol);
+  const double m = double(p.size());
+  const bool dense = m > 0 && double(p.W.nonZeros()) >= kDenseRangeFill * m * m;
+  return detail::with_friction_cone(p, [&](auto cone) {
+    using Cone = decltype(cone);
+    const SparseMatrix W(p.W);
+    if (dense) return detail::solve_existence_dense<Cone>(W, Vector(p.q), p.mu, tol);
+    return detail::solve_existence<Cone, Backend>(SparseMatrix(W.transpose()), Vector(p.q), p.mu, tol);
+  });
 }
 
 }  // namespace ipm

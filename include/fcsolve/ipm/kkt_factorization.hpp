@@ -14,6 +14,12 @@
 //     on generated rigid stacks 1.5 to 2.5x faster than with UMFPACK).
 //   DenseKktFactorization: Eigen::LDLT / PartialPivLU for small scenes, which
 //     must not pay for sparse machinery.
+//   DenseCholeskyKktFactorization: the same with Eigen's blocked Cholesky
+//     (LLT) for a symmetric K, where the form makes it positive definite
+//     (LocalForm with s frozen: W PSD plus the cone blocks); a K that is not
+//     numerically fails, and KktSystem's caller regularises. At m = 2400
+//     (one core, this machine) LLT took 0.2 s, LDLT 1.0 s, CHOLMOD's
+//     simplicial LDL^T (no BLAS) some 9 s.
 //
 // Both store K in full (both triangles): LDL^T reads one, LU both, and the
 // assembly code does not depend on the choice.
@@ -201,7 +207,8 @@ class SparseKktFactorization {
   mutable Vector pb_, px_;
 };
 
-class DenseKktFactorization {
+template <bool PositiveDefinite>
+class BasicDenseKktFactorization {
  public:
   using Backend = EigenBackend;  // for the few sparse solves around the IPM
   static constexpr bool is_dense = true;
@@ -217,6 +224,10 @@ class DenseKktFactorization {
   Index num_values() const { return K_.size(); }
 
   bool factorize() {
+    if (symmetric_ && PositiveDefinite) {
+      llt_.compute(K_);
+      return llt_.info() == Eigen::Success;
+    }
     if (symmetric_) {
       ldlt_.compute(K_);
       if (ldlt_.info() != Eigen::Success) return false;
@@ -234,16 +245,21 @@ class DenseKktFactorization {
     return (symmetric_ ? 1.0 : 2.0) * n * n * n / 3.0;
   }
   void solve(const Vector& b, Vector& x) const {
-    if (symmetric_) x = ldlt_.solve(b);
+    if (symmetric_ && PositiveDefinite) x = llt_.solve(b);
+    else if (symmetric_) x = ldlt_.solve(b);
     else x = lu_.solve(b);
   }
 
  private:
   DenseMatrix K_;
   bool symmetric_ = true;
+  Eigen::LLT<DenseMatrix> llt_;
   Eigen::LDLT<DenseMatrix> ldlt_;
   Eigen::PartialPivLU<DenseMatrix> lu_;
 };
+
+using DenseKktFactorization = BasicDenseKktFactorization<false>;
+using DenseCholeskyKktFactorization = BasicDenseKktFactorization<true>;
 
 }  // namespace ipm
 }  // namespace fcsolve
