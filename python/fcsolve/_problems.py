@@ -393,7 +393,9 @@ def check_existence(problem, tol=1e-10):
     method, then checks the witness it finds directly. Returns a dict:
     slater (True: a solution exists), verdict ('solution-exists' or
     'not-established'), x_star (optimal value of the program, > 0 iff the
-    assumption holds), witness (v, or r for a local problem), witness_norm,
+    assumption holds; its size depends on the program's form, e.g. a
+    LocalProblem with a dense W runs the reduced form, the verdict does
+    not), witness (v, or r for a local problem), witness_norm,
     margin (min over contacts of u_N - mu ||u_T|| at the witness), and the
     program's own check_error, check_status, check_iterations. Needs
     friction cones (d = 2 or 3). NotImplementedError if this build lacks the
