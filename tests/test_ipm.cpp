@@ -61,6 +61,18 @@ registry::SolveOutcome run_entry(const GlobalProblem& g, const std::string& name
   return out;
 }
 
+/// Runs a catalogue entry on FC/II and checks that it converged, by the
+/// independent error.
+registry::SolveOutcome solve_local_converges(const LocalProblem& p, const char* name, double tol) {
+  CAPTURE(name);
+  auto req = registry::make_request(fcsolve_test::catalogue_find(name));
+  req.common.tol = tol;
+  registry::SolveOutcome out = fcsolve_test::solve_named(LocalProblemView(p), name, req);
+  CHECK(out.info.converged());
+  CHECK(local_error(p, out.r) <= tol);
+  return out;
+}
+
 std::vector<std::string> shared_global_files() {
   return fcsolve_test::fclib_files("global");
 }
@@ -208,11 +220,7 @@ TEST_CASE("2D contacts (d = 2): closed-form one-contact solutions", "[ipm][2d]")
     g.mu = p.mu;
     for (const char* name : {"nipm", "aclm-newton"}) {
       CAPTURE(name);
-      auto req = registry::make_request(fcsolve_test::catalogue_find(name));
-      req.common.tol = 1e-10;
-      const auto local = fcsolve_test::solve_named(LocalProblemView(p), name, req);
-      CHECK(local.info.converged());
-      CHECK(local_error(p, local.r) <= 1e-10);
+      const auto local = solve_local_converges(p, name, 1e-10);
       CHECK((local.r - c.r).norm() <= 1e-8);
       const auto global = run_entry(g, name, 1e-10);
       CHECK(global.info.converged());
@@ -533,6 +541,23 @@ TEST_CASE("Existence check of FC/II with a dense W: the reduced program", "[ipm]
     const auto p = std::get<LocalProblem>(fclib::read_problem(fcsolve_test::bundled("Rover1039.hdf5")));
     check_both_forms(p, true);
   }
+}
+
+TEST_CASE("Interior points on FC/II with a dense W factorise it dense", "[ipm][dense]") {
+  // m = 120 > kDenseKktMaxSize with W full (fill 1 >= kDenseKktFill): K goes
+  // to DenseCholeskyKktFactorization (solvers/ipm_entries.hpp). W positive
+  // definite: the solution exists and is unique.
+  std::mt19937 gen(3);
+  std::normal_distribution<double> normal;
+  const int nc = 40, m = 3 * nc;
+  DenseMatrix B(m, m);
+  for (Index j = 0; j < m; ++j)
+    for (Index i = 0; i < m; ++i) B(i, j) = normal(gen);
+  const DenseMatrix W = B * B.transpose() / double(m) + 0.1 * DenseMatrix::Identity(m, m);
+  Vector q(m);
+  for (Index a = 0; a < nc; ++a) q.segment<3>(3 * a) << -1 + 0.5 * normal(gen), normal(gen), normal(gen);
+  const LocalProblem p = fcsolve_test::make_local(3, W, q, Vector::Constant(nc, 0.5));
+  for (const char* name : {"nipm", "aclm-newton"}) solve_local_converges(p, name, 1e-10);
 }
 
 TEST_CASE("Reported convergence always means FCLIB error <= tol", "[ipm][status]") {

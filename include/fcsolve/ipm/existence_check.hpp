@@ -60,11 +60,6 @@ struct ExistenceReport {
   SolverInfo info;            ///< of the interior-point solve
 };
 
-/// W's fill (nnz / m^2) from which the FC/II check runs on the reduced form
-/// with dense Cholesky (solve_existence_dense). A FEM body's W is full; a
-/// rigid pile's holds some 50 blocks a row.
-inline constexpr double kDenseRangeFill = 0.3;
-
 namespace detail {
 
 /// The certificate: u = H^T v + w (or W r + q) at the witness strictly
@@ -211,11 +206,11 @@ ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10) 
 }
 
 /// The same for FC/II with H^T replaced by W: exists r with W r + q - a x in K*.
-/// A W of fill kDenseRangeFill or more goes to the reduced form (header).
+/// A W of fill kDenseKktFill or more goes to the reduced form (header).
 template <class Backend = DefaultBackend>
 ExistenceReport check_existence(const LocalProblemView& p, double tol = 1e-10) {
   const double m = double(p.size());
-  const bool dense = m > 0 && double(p.W.nonZeros()) >= kDenseRangeFill * m * m;
+  const bool dense = m > 0 && double(p.W.nonZeros()) >= kDenseKktFill * m * m;
   return detail::with_friction_cone(p, [&](auto cone) {
     using Cone = decltype(cone);
     const SparseMatrix W(p.W);

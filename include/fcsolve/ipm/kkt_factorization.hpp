@@ -46,6 +46,14 @@
 namespace fcsolve {
 namespace ipm {
 
+/// Fill (nnz / size^2) from which K is factorised dense: its sparse
+/// factors would be dense, and the dense factorisations run blocked, where
+/// CHOLMOD's simplicial LDL^T runs without BLAS (an elastic body's FC/II of
+/// 2352 columns: some 9 s a factorisation against 0.2 s; docs/results.md,
+/// stop 65). A FEM body's W is full; a rigid pile's holds some 50 blocks a
+/// row.
+inline constexpr double kDenseKktFill = 0.3;
+
 /// The sparse LDL^T and LU a linear-algebra backend offers for K. K is
 /// stored pre-permuted (SparseKktFactorization), so LDL^T runs in natural
 /// order.

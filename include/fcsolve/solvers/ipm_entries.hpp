@@ -139,14 +139,15 @@ struct TypeTag {
 
 /// The catalogue's dispatch (solvers/dispatch.hpp) for the interior-point
 /// forms: f(TypeTag<Form<Cone, Factorization>>{}) for the friction cones
-/// (d = 2 or 3, require_friction()), a dense KKT factorisation for small
-/// systems.
-template <template <class, class> class Form, class F>
+/// (d = 2 or 3, require_friction()), `DenseFactorization` for small or
+/// dense systems: the local form's symmetric K is positive definite
+/// (Cholesky), the global form's quasi-definite (LDL^T).
+template <template <class, class> class Form, class DenseFactorization, class F>
 void dispatch_ipm_form(int d, bool dense, F&& f) {
   dispatch_cone_and_density(d, dense, [&](auto cone, auto is_dense) {
     using Cone = decltype(cone);
     if constexpr (Cone::dim > 1) {
-      using Factorization = std::conditional_t<decltype(is_dense)::value, ipm::DenseKktFactorization,
+      using Factorization = std::conditional_t<decltype(is_dense)::value, DenseFactorization,
                                                ipm::SparseKktFactorization<DefaultBackend>>;
       using FormType = Form<Cone, Factorization>;
       using View = typename FormType::View;
@@ -162,7 +163,10 @@ inline LocalSolveFunction ipm_local(IpmKind kind) {
   return [kind](const LocalProblemView& p, const SolveRequest& req) {
     require_friction(p.d);
     SolveOutcome out;
-    dispatch_ipm_form<ipm::LocalForm>(p.d, p.size() <= kDenseKktMaxSize, [&](auto form) {
+    // K has W's pattern (and the diagonal blocks): dense where W is.
+    const double m = double(p.size());
+    const bool dense = p.size() <= kDenseKktMaxSize || double(p.W.nonZeros()) >= ipm::kDenseKktFill * m * m;
+    dispatch_ipm_form<ipm::LocalForm, ipm::DenseCholeskyKktFactorization>(p.d, dense, [&](auto form) {
       out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out);
     });
     return out;
@@ -179,7 +183,7 @@ inline GlobalSolveFunction ipm_global(IpmKind kind) {
             return ipm_local(kind)(reduced, within);
           });
     const bool dense = p.num_dofs() + p.size() <= kDenseKktMaxSize;
-    dispatch_ipm_form<ipm::GlobalForm>(p.d, dense, [&](auto form) {
+    dispatch_ipm_form<ipm::GlobalForm, ipm::DenseKktFactorization>(p.d, dense, [&](auto form) {
       out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out);
     });
     return out;
