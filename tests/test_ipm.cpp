@@ -339,6 +339,23 @@ TEST_CASE("Rank-deficient H: duplicated contacts", "[ipm][rank]") {
   }
 }
 
+TEST_CASE("The rank of a dense symmetric W from its eigenvalues", "[ipm][rank]") {
+  // W = B B^T with B of 60 x k: rank k, full pattern (fill 1 >= kDenseKktFill),
+  // so diagnose() counts its eigenvalues; the sparse QR agrees.
+  std::mt19937 gen(5);
+  std::normal_distribution<double> normal;
+  for (const Index k : {Index(12), Index(59), Index(60)}) {
+    CAPTURE(k);
+    DenseMatrix B(60, k);
+    for (Index j = 0; j < k; ++j)
+      for (Index i = 0; i < 60; ++i) B(i, j) = normal(gen);
+    const LocalProblem p =
+        fcsolve_test::make_local(3, B * B.transpose(), Vector::Constant(60, -1.0), Vector::Constant(20, 0.3));
+    CHECK(diagnose(p).rank_H == k);
+    CHECK(ipm::detail::sparse_rank(p.W) == k);
+  }
+}
+
 TEST_CASE("Diagnostics above the size limit skip the rank and the spectrum", "[ipm][rank]") {
   // 1001 bodies of 3 translational dofs, each on the floor through one
   // contact (H = I, m = 3003 > kDiagnosticsDenseLimit): the sparse QR, whose
