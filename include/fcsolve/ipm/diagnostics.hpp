@@ -96,9 +96,7 @@ inline ProblemDiagnostics diagnose(const LocalProblemView& p) {
   const SparseMatrix W(p.W);
   Vector eigenvalues;
   detail::spectrum(W, d, &eigenvalues);
-  const double m = double(W.rows());
-  const bool dense_symmetric =
-      double(W.nonZeros()) >= kDenseKktFill * m * m && d.asymmetry_W <= kSymmetryRoundoff;
+  const bool dense_symmetric = fills_densely(W.nonZeros(), W.rows()) && d.asymmetry_W <= kSymmetryRoundoff;
   if (W.rows() <= kDiagnosticsDenseLimit)
     d.rank_H = dense_symmetric && eigenvalues.size() ? detail::spectral_rank(eigenvalues) : detail::sparse_rank(W);
   return d;

@@ -16,7 +16,8 @@
 //     must not pay for sparse machinery.
 //   DenseCholeskyKktFactorization: the same with Eigen's blocked Cholesky
 //     (LLT) for a symmetric K, where the form makes it positive definite
-//     (LocalForm with s frozen: W PSD plus the cone blocks); a K that is not
+//     (LocalForm with s frozen: W PSD plus the cone blocks; its small
+//     systems, and those of a dense W: kDenseKktFill); a K that is not
 //     numerically fails, and KktSystem's caller regularises. At m = 2400
 //     (one core, this machine) LLT took 0.2 s, LDLT 1.0 s, CHOLMOD's
 //     simplicial LDL^T (no BLAS) some 9 s.
@@ -53,6 +54,12 @@ namespace ipm {
 /// stop 65). A FEM body's W is full; a rigid pile's holds some 50 blocks a
 /// row.
 inline constexpr double kDenseKktFill = 0.3;
+
+/// Whether a size x size matrix of `nonzeros` entries fills kDenseKktFill.
+inline bool fills_densely(Index nonzeros, Index size) {
+  const double m = double(size);
+  return size > 0 && double(nonzeros) >= kDenseKktFill * m * m;
+}
 
 /// The sparse LDL^T and LU a linear-algebra backend offers for K. K is
 /// stored pre-permuted (SparseKktFactorization), so LDL^T runs in natural

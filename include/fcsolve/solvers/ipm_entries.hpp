@@ -164,8 +164,7 @@ inline LocalSolveFunction ipm_local(IpmKind kind) {
     require_friction(p.d);
     SolveOutcome out;
     // K has W's pattern (and the diagonal blocks): dense where W is.
-    const double m = double(p.size());
-    const bool dense = p.size() <= kDenseKktMaxSize || double(p.W.nonZeros()) >= ipm::kDenseKktFill * m * m;
+    const bool dense = p.size() <= kDenseKktMaxSize || ipm::fills_densely(p.W.nonZeros(), p.size());
     dispatch_ipm_form<ipm::LocalForm, ipm::DenseCholeskyKktFactorization>(p.d, dense, [&](auto form) {
       out.info = run_ipm<typename decltype(form)::type>(kind, p, req, out);
     });
