@@ -8,6 +8,8 @@
 #include "test_support.hpp"
 
 #include <fcsolve/nipm.hpp>
+#include <fcsolve/scenes/box_layouts.hpp>
+#include <fcsolve/scenes/rigid_stepper.hpp>
 #include "test_catalogue.hpp"
 
 #include <catch2/catch.hpp>
@@ -557,6 +559,71 @@ TEST_CASE("Existence check of FC/II with a dense W: the reduced program", "[ipm]
   SECTION("a rigid scene's FC/II through both programs") {
     const auto p = std::get<LocalProblem>(fclib::read_problem(fcsolve_test::bundled("Rover1039.hdf5")));
     check_both_forms(p, true);
+  }
+}
+
+TEST_CASE("Existence check of a sparse, ill-conditioned FC/II: heavy bodies on light ones", "[ipm][existence]") {
+  // The scene of `fcsolve generate heavy-on-light --mass-ratio 1e4` (cli/
+  // generate.cpp's step settings), stepped until ~40 contacts. With H^T = W
+  // the program's metric ||r||^2 puts its x* below the interior point's
+  // accuracy (no witness); the Cholesky form (H^T = L~, W + eps I = L~ L~^T:
+  // FC/I's metric, W's sparsity) certifies it, as the FC/I form is
+  // certified (existence_check.hpp).
+  scenes::BoxLayout layout;
+  layout.contacts = 40;
+  layout.seed = 901;
+  layout.mass_ratio = 1e4;
+  scenes::BoxScene scene = scenes::heavy_on_light(layout);
+  scenes::StepSettings s;
+  s.h = 2e-3;
+  s.law.beta = 0;
+  s.law.slop = 0;
+  s.tol = 1e-4;
+  s.max_iter = 50;
+  scenes::RigidStepper<scenes::BoxScene> stepper(scene, s);
+  GlobalProblem g;
+  LocalProblem p;
+  for (int k = 0; k < 2000 && p.num_contacts() < 40; ++k)
+    if (stepper.step().contacts >= 30) {
+      g = stepper.global();
+      p = stepper.local();
+    }
+  REQUIRE(p.num_contacts() >= 30);
+  REQUIRE_FALSE(fills_densely(p.W.nonZeros(), p.size()));
+  CHECK(check_existence(g).slater);
+  const ExistenceReport rep = check_existence(p);
+  INFO("nc = " << p.num_contacts() << ", x* = " << rep.x << ", program " << rep.program);
+  CHECK(std::string(rep.program) == "cholesky-form");
+  REQUIRE(rep.slater);
+  const Vector u = p.W * rep.witness + p.q;
+  double margin = std::numeric_limits<double>::infinity();
+  for (Index a = 0; a < p.num_contacts(); ++a)
+    margin = std::min(margin, u[3 * a] - p.mu[a] * u.segment<2>(3 * a + 1).norm());
+  CHECK(margin > 1e-9 * u.cwiseAbs().maxCoeff());
+  CHECK(margin == Approx(rep.margin).margin(1e-12 * u.cwiseAbs().maxCoeff()));
+}
+
+TEST_CASE("Existence check of a sparse, singular FC/II: two normals against each other", "[ipm][existence]") {
+  // u_N of the two contacts is q_N + (s, -s) whatever r (W's normal block
+  // [1 -1; -1 1], rank 1), and q_N = (-1, -1): u_N sums to -2, no r puts both
+  // inside K*. W is sparse (fill 8 / 36): the Cholesky form of W + eps I.
+  DenseMatrix W = DenseMatrix::Zero(6, 6);
+  W(0, 0) = W(3, 3) = 1;
+  W(0, 3) = W(3, 0) = -1;
+  W(1, 1) = W(2, 2) = W(4, 4) = W(5, 5) = 1;
+  Vector q = Vector::Zero(6);
+  q[0] = q[3] = -1;
+  const LocalProblem p = fcsolve_test::make_local(3, W, q, Vector::Constant(2, 0.5));
+  const ExistenceReport rep = check_existence(p);
+  CHECK(std::string(rep.program) == "cholesky-form");
+  CHECK(rep.info.converged());
+  CHECK_FALSE(rep.slater);
+  CHECK(std::abs(rep.x) <= 1e-6);
+  SECTION("and with q_N = (1, 1) the same W has a witness: r = 0") {
+    q[0] = q[3] = 1;
+    const ExistenceReport ok = check_existence(fcsolve_test::make_local(3, W, q, Vector::Constant(2, 0.5)));
+    CHECK(ok.slater);
+    CHECK(ok.margin > 0);
   }
 }
 

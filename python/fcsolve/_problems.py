@@ -397,7 +397,11 @@ def check_existence(problem, tol=1e-10):
     LocalProblem with a dense W runs the reduced form, the verdict does
     not), witness (v, or r for a local problem), witness_norm,
     margin (min over contacts of u_N - mu ||u_T|| at the witness), and the
-    program's own check_error, check_status, check_iterations. Needs
+    program's own check_error, check_status, check_iterations, and
+    check_program: 'global-form' for a GlobalProblem; for a LocalProblem
+    'cholesky-form' (sparse W: H^T replaced by a sparse Cholesky factor of
+    W + eps I, FC/I's metric), 'reduced-form' (dense W) or 'w-form' (H^T = W,
+    where that factorisation failed). Needs
     friction cones (d = 2 or 3). NotImplementedError if this build lacks the
     interior-point family."""
     if not isinstance(problem, _Problem):

@@ -294,7 +294,7 @@ py::dict existence_dict(const Data& data, double tol) {
                   "witness"_a = py::array_t<double>(rep.witness.size(), rep.witness.data()),
                   "witness_norm"_a = rep.witness_norm, "check_error"_a = rep.solver_error,
                   "check_status"_a = fcsolve::to_string(rep.info.status),
-                  "check_iterations"_a = rep.info.iterations);
+                  "check_iterations"_a = rep.info.iterations, "check_program"_a = rep.program);
 }
 
 template <class Data>

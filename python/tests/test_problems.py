@@ -379,6 +379,8 @@ def test_existence_check_gives_a_certificate(name):
     margin = U[:, 0] - P.mu * np.linalg.norm(U[:, 1:], axis=1)
     assert margin.min() > 0
     assert margin.min() == pytest.approx(rep["margin"], rel=1e-6)
+    expected = "global-form" if isinstance(P, fcsolve.GlobalProblem) else "cholesky-form"
+    assert rep["check_program"] == expected  # these W are sparse
     assert rep["witness_norm"] == pytest.approx(np.linalg.norm(witness))
 
 

@@ -164,3 +164,22 @@ def test_check_on_a_pile_above_the_diagnostics_limit(tmp_path):
         assert f"{rank}=nan/{d['m']}" in text.stdout, text.stdout
         if rank == "rank_H":
             assert 1.0 <= d["contact_ratio"] < 1.1, d  # two contacts a sphere
+
+
+def test_check_of_both_forms_of_a_heavy_on_light_stack(tmp_path):
+    # mass ratio 1e4: W is sparse and ill-conditioned, where the program with
+    # H^T = W (metric ||r||^2) finds no witness and the Cholesky form (H^T a
+    # factor of W + eps I, FC/I's metric) does (ipm/existence_check.hpp); the
+    # FC/II verdict must agree with its FC/I form's (the certificate itself
+    # is checked in tests/test_ipm.cpp on such a stack)
+    out, local, _ = generate(tmp_path, "heavy-on-light", "--mass-ratio", "1e4", "--seed", "901", contacts=40)
+    verdicts = {}
+    for path in (out, local):
+        p = run("check", path, "--json")
+        assert p.returncode == 0, p.stderr
+        d = json.loads(p.stdout)
+        assert d["check_program"] == ("global-form" if d["kind"] == "global" else "cholesky-form"), d
+        verdicts[d["kind"]] = d["verdict"]
+    assert verdicts == {"global": "solution-exists", "local": "solution-exists"}
+    text = run("check", local)
+    assert "check_program=" in text.stdout, text.stdout
