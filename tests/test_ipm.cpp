@@ -627,6 +627,23 @@ TEST_CASE("Existence check of a sparse, singular FC/II: two normals against each
   }
 }
 
+TEST_CASE("Existence check of a W that is not positive semidefinite: H^T = W", "[ipm][existence]") {
+  // No W of a mechanical system, but a file may hold one: W_11 = -1, so no
+  // eps up to 1e-6 makes W + eps I positive definite and the Cholesky form
+  // gives way to the program with H^T = W, whose certificate is the same:
+  // u_N = (r_0 + q_0, -r_3 + q_3) can be made positive by r.
+  DenseMatrix W = DenseMatrix::Identity(6, 6);
+  W(3, 3) = -1;
+  Vector q = Vector::Zero(6);
+  q[0] = q[3] = -1;
+  const LocalProblem p = fcsolve_test::make_local(3, W, q, Vector::Constant(2, 0.5));
+  const ExistenceReport rep = check_existence(p);
+  CHECK(std::string(rep.program) == "w-form");
+  REQUIRE(rep.slater);
+  const Vector u = p.W * rep.witness + p.q;
+  for (Index a = 0; a < 2; ++a) CHECK(u[3 * a] - 0.5 * u.segment<2>(3 * a + 1).norm() > 0);
+}
+
 TEST_CASE("Interior points on FC/II with a dense W factorise it dense", "[ipm][dense]") {
   // m = 120 > kDenseKktMaxSize with W full (fill 1 >= kDenseKktFill): K goes
   // to DenseCholeskyKktFactorization (solvers/ipm_entries.hpp). W positive
