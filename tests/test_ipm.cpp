@@ -358,6 +358,65 @@ TEST_CASE("The rank of a dense symmetric W from its eigenvalues", "[ipm][rank]")
   }
 }
 
+TEST_CASE("Lanczos finds the largest eigenvalue of a symmetric operator", "[ipm][lanczos]") {
+  // Against the dense eigensolver: a sparse SPD matrix and a singular PSD
+  // one (B B^T of rank k < m), as a diagnostics' W is.
+  std::mt19937 gen(11);
+  std::normal_distribution<double> normal;
+  const Index m = 240;
+  for (const Index k : {Index(240), Index(90)}) {
+    CAPTURE(k);
+    DenseMatrix B = DenseMatrix::Zero(m, k);
+    for (Index j = 0; j < k; ++j)
+      for (Index i = 0; i < m; ++i)
+        if ((i + 3 * j) % 7 == 0 || i == j) B(i, j) = normal(gen);
+    const SparseMatrix S = DenseMatrix(B * B.transpose()).sparseView();
+    const Eigen::SelfAdjointEigenSolver<DenseMatrix> exact{DenseMatrix(S)};
+    const auto estimate =
+        linalg::largest_eigenvalue(m, [&](const Vector& x, Vector& y) { y.noalias() = S * x; }, 1e-10, 400);
+    CHECK(estimate.converged);
+    CHECK(std::abs(estimate.value - exact.eigenvalues()[m - 1]) <= 1e-9 * exact.eigenvalues()[m - 1]);
+  }
+}
+
+TEST_CASE("The extreme eigenvalues of a sparse W above the size limit, in closed form", "[ipm][rank]") {
+  // W = blockdiag(s_i R_i diag(1, 1/2, 1/4) R_i^T), m = 3003 > the limit,
+  // s_i in [1, 2] except s = 4 (lambda_max = 4) and s = 1/20 (lambda_min =
+  // 1/80): Lanczos on W and on its Cholesky factor's inverse, no QR.
+  const Index nc = kDiagnosticsDenseLimit / 3 + 1;
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> scale(1.0, 2.0);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Index c = 0; c < nc; ++c) {
+    const double s = c == 7 ? 4.0 : c == 500 ? 0.05 : scale(gen);
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3 * double(c), Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d block = s * R * Eigen::Vector3d(1, 0.5, 0.25).asDiagonal() * R.transpose();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) entries.emplace_back(int(3 * c + i), int(3 * c + j), block(i, j));
+  }
+  LocalProblem p;
+  p.W.resize(3 * nc, 3 * nc);
+  p.W.setFromTriplets(entries.begin(), entries.end());
+  p.W.makeCompressed();
+  p.q = Vector::Constant(3 * nc, -1.0);
+  p.mu = Vector::Constant(nc, 0.5);
+  const auto d = diagnose(p);
+  CHECK(d.rank_H == -1);
+  CHECK(d.lambda_max_W == Approx(4.0).epsilon(1e-9));
+  CHECK(d.lambda_min_W == Approx(1.0 / 80).epsilon(1e-9));
+  CHECK(d.cond_W == Approx(320.0).epsilon(1e-8));
+  // The same W with one block singular: no Cholesky factor, cond inf,
+  // lambda_min not claimed; lambda_max still 4.
+  for (auto& e : entries)
+    if (e.row() >= 3 * 500 && e.row() < 3 * 501) e = Eigen::Triplet<double>(e.row(), e.col(), 0.0);
+  p.W.setFromTriplets(entries.begin(), entries.end());
+  p.W.makeCompressed();
+  const auto singular = diagnose(p);
+  CHECK(singular.lambda_max_W == Approx(4.0).epsilon(1e-9));
+  CHECK(std::isnan(singular.lambda_min_W));
+  CHECK(std::isinf(singular.cond_W));
+}
+
 TEST_CASE("Diagnostics above the size limit skip the rank and the spectrum", "[ipm][rank]") {
   // 1001 bodies of 3 translational dofs, each on the floor through one
   // contact (H = I, m = 3003 > kDiagnosticsDenseLimit): the sparse QR, whose

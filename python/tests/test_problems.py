@@ -410,6 +410,11 @@ def test_diagnostics():
     P = fcsolve.load(data_file("Capsules-i101-404.hdf5"))
     d = P.diagnostics()
     assert 0 < d["rank_W"] < d["m"] == P.size  # more contact unknowns than dofs behind W
+    # a sparse W's extreme eigenvalues come from Lanczos; the rank below m
+    # makes lambda_min 0
+    eig = np.linalg.eigvalsh(((P.W + P.W.T) / 2).toarray())
+    assert d["lambda_max_W"] == pytest.approx(eig.max(), rel=1e-8)
+    assert d["lambda_min_W"] == 0 and d["cond_W"] == float("inf")
     assert d["asymmetry_W"] == pytest.approx(P.info()["asymmetry_W"])
     assert "contact_ratio" not in d
 

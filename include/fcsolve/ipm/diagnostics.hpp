@@ -4,11 +4,13 @@
 //   contact-to-dof ratio c = d nc / n  (c > 1 forces a rank-deficient H),
 //   rank(H) from a column-pivoted sparse QR (of a dense symmetric W, from
 //   its eigenvalues),
-//   the spectrum of the symmetric part of W = H^T M^-1 H (cond(W); zero
-//   eigenvalues when H is rank-deficient), and the asymmetry of W.
+//   the extreme eigenvalues of the symmetric part of W = H^T M^-1 H (cond(W);
+//   zero eigenvalues when H is rank-deficient), and the asymmetry of W.
 #pragma once
 
 #include <fcsolve/ipm/kkt_factorization.hpp>
+#include <fcsolve/linalg/default_backend.hpp>
+#include <fcsolve/linalg/lanczos.hpp>
 #include <fcsolve/problem/global_problem.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 #include <fcsolve/problem/reduction.hpp>
@@ -16,6 +18,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseQR>
 
 #include <limits>
@@ -27,17 +30,18 @@ struct ProblemDiagnostics {
   double contact_ratio = std::numeric_limits<double>::quiet_NaN();  ///< d nc / n (global only)
   Index rank_H = -1;           ///< estimated rank of H (global) or W (local); -1 not computed (m > kDiagnosticsDenseLimit)
   Index columns_H = 0;         ///< m
-  double lambda_min_W = std::numeric_limits<double>::quiet_NaN();  ///< of (W + W^T) / 2
+  double lambda_min_W = std::numeric_limits<double>::quiet_NaN();  ///< of (W + W^T) / 2; NaN not computed
   double lambda_max_W = std::numeric_limits<double>::quiet_NaN();
-  double cond_W = std::numeric_limits<double>::quiet_NaN();  ///< lambda_max / lambda_min (inf if <= 0)
+  double cond_W = std::numeric_limits<double>::quiet_NaN();  ///< lambda_max / lambda_min (inf if <= 0 or not positive definite)
   double asymmetry_W = 0;      ///< ||W - W^T||_F / ||W||_F
 };
 
-/// Largest m for which the spectrum of W (dense eigensolver) and the rank
-/// of H or W (column-pivoted sparse QR) are computed. The QR's fill grows
-/// fast on piles: measured (`fcsolve check`, docs/results.md, stop 64) 2.8 s
-/// at 3003 columns, 87 s at 9018 and 6.9 minutes at 15 030; above the limit
-/// d nc / n still bounds the rank deficiency from below (global).
+/// Largest m for which the rank of H or W (column-pivoted sparse QR) and
+/// the spectrum of a dense W (dense eigensolver) are computed. The QR's fill
+/// grows fast on piles: measured (`fcsolve check`, docs/results.md, stop 64)
+/// 2.8 s at 3003 columns, 87 s at 9018 and 6.9 minutes at 15 030; above the
+/// limit d nc / n still bounds the rank deficiency from below (global). A
+/// sparse W's extreme eigenvalues come from Lanczos at any size.
 inline constexpr Index kDiagnosticsDenseLimit = 3000;
 
 namespace detail {
@@ -50,20 +54,6 @@ inline Index sparse_rank(const SparseMatrix& A) {
   return qr.info() == Eigen::Success ? Index(qr.rank()) : Index(-1);
 }
 
-/// The spectrum of (W + W^T) / 2 into d (and `eigenvalues`, if given).
-inline void spectrum(const SparseMatrix& W, ProblemDiagnostics& d, Vector* eigenvalues = nullptr) {
-  d.asymmetry_W = relative_asymmetry(W);
-  if (W.rows() == 0 || W.rows() > kDiagnosticsDenseLimit) return;
-  const DenseMatrix S = DenseMatrix(symmetric_part(W));
-  Eigen::SelfAdjointEigenSolver<DenseMatrix> es(S, Eigen::EigenvaluesOnly);
-  if (es.info() != Eigen::Success) return;
-  d.lambda_min_W = es.eigenvalues().minCoeff();
-  d.lambda_max_W = es.eigenvalues().maxCoeff();
-  d.cond_W = d.lambda_min_W > 0 ? d.lambda_max_W / d.lambda_min_W
-                                : std::numeric_limits<double>::infinity();
-  if (eigenvalues) *eigenvalues = es.eigenvalues();
-}
-
 /// Rank of a symmetric matrix from its eigenvalues: those above the sparse
 /// QR's default threshold, 20 (rows + cols) eps times the largest |lambda|.
 inline Index spectral_rank(const Vector& eigenvalues) {
@@ -72,8 +62,81 @@ inline Index spectral_rank(const Vector& eigenvalues) {
   return Index((eigenvalues.array().abs() > threshold).count());
 }
 
+inline void set_condition(ProblemDiagnostics& d) {
+  d.cond_W = d.lambda_min_W > 0 ? d.lambda_max_W / d.lambda_min_W : std::numeric_limits<double>::infinity();
+}
+
+/// The whole spectrum of a dense (W + W^T) / 2 into d and `eigenvalues`
+/// (m <= kDiagnosticsDenseLimit).
+inline void dense_spectrum(const SparseMatrix& W, ProblemDiagnostics& d, Vector& eigenvalues) {
+  if (W.rows() == 0 || W.rows() > kDiagnosticsDenseLimit) return;
+  const DenseMatrix S = DenseMatrix(symmetric_part(W));
+  Eigen::SelfAdjointEigenSolver<DenseMatrix> es(S, Eigen::EigenvaluesOnly);
+  if (es.info() != Eigen::Success) return;
+  d.lambda_min_W = es.eigenvalues().minCoeff();
+  d.lambda_max_W = es.eigenvalues().maxCoeff();
+  set_condition(d);
+  eigenvalues = es.eigenvalues();
+}
+
+/// Relative accuracy asked of the Lanczos estimates, and the least they
+/// must reach to be reported.
+inline constexpr double kLanczosTol = 1e-10;
+inline constexpr double kLanczosReportTol = 1e-6;
+
+/// The extreme eigenvalues of a sparse S = (W + W^T) / 2, at any size:
+/// lambda_max by Lanczos on S; lambda_min = 0 where the rank is known to be
+/// below m, else 1 / lambda_max(S^-1) by Lanczos on a sparse Cholesky
+/// factor of S (AMD order). Where S has no Cholesky factor (singular or
+/// indefinite to roundoff) lambda_min is not computed and cond_W is inf.
+/// The dense eigensolver took 5.4 s of `check`'s 7.5 s on a box stack of
+/// 3000 columns (docs/results.md, stop 67).
+inline void sparse_spectrum(const SparseMatrix& W, ProblemDiagnostics& d) {
+  const Index m = W.rows();
+  if (m == 0) return;
+  const SparseMatrix S = symmetric_part(W);
+  const auto top = linalg::largest_eigenvalue(m, [&](const Vector& x, Vector& y) { y.noalias() = S * x; }, kLanczosTol);
+  if (top.residual_bound > kLanczosReportTol * std::abs(top.value)) return;
+  d.lambda_max_W = top.value;
+  if (d.rank_H >= 0 && d.rank_H < m) {
+    d.lambda_min_W = 0;
+    set_condition(d);
+    return;
+  }
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> llt(S);
+  if (llt.info() != Eigen::Success) {
+    d.cond_W = std::numeric_limits<double>::infinity();
+    return;
+  }
+  const auto inverse = linalg::largest_eigenvalue(m, [&](const Vector& x, Vector& y) { y = llt.solve(x); }, kLanczosTol);
+  if (inverse.residual_bound > kLanczosReportTol * std::abs(inverse.value) || !(inverse.value > 0)) return;
+  d.lambda_min_W = 1.0 / inverse.value;
+  set_condition(d);
+}
+
+/// W's spectrum and, for a local problem (`rank_from_W`), its rank. A dense
+/// symmetric W (an elastic body's FC/II) takes its rank from the eigenvalues
+/// of the dense solver: its sparse QR fills completely and runs without
+/// BLAS (7 of `check`'s 18 s on a FEM block of 2352 columns). A sparse W
+/// takes its rank from the QR first, which then gives lambda_min = 0.
+inline void spectrum_and_rank(const SparseMatrix& W, ProblemDiagnostics& d, bool rank_from_W) {
+  d.asymmetry_W = relative_asymmetry(W);
+  const Index m = W.rows();
+  if (fills_densely(W.nonZeros(), m)) {
+    Vector eigenvalues;
+    dense_spectrum(W, d, eigenvalues);
+    if (rank_from_W && m <= kDiagnosticsDenseLimit)
+      d.rank_H = d.asymmetry_W <= kSymmetryRoundoff && eigenvalues.size() ? spectral_rank(eigenvalues) : sparse_rank(W);
+    return;
+  }
+  if (rank_from_W && m <= kDiagnosticsDenseLimit) d.rank_H = sparse_rank(W);
+  sparse_spectrum(W, d);
+}
+
 }  // namespace detail
 
+/// A global problem's W is formed (by the reduction) only up to
+/// kDiagnosticsDenseLimit columns; its rank is H's.
 template <class Backend = DefaultBackend>
 ProblemDiagnostics diagnose(const GlobalProblemView& p) {
   ProblemDiagnostics d;
@@ -82,23 +145,15 @@ ProblemDiagnostics diagnose(const GlobalProblemView& p) {
   if (p.size() <= kDiagnosticsDenseLimit) {
     d.rank_H = detail::sparse_rank(SparseMatrix(p.H));
     GlobalReduction<Backend> reduction(p);
-    detail::spectrum(reduction.local().W, d);
+    detail::spectrum_and_rank(reduction.local().W, d, false);
   }
   return d;
 }
 
-/// A dense symmetric W (an elastic body's FC/II) takes its rank from the
-/// eigenvalues its spectrum computes: its sparse QR fills completely and
-/// runs without BLAS (7 of `check`'s 18 s on a FEM block of 2352 columns).
 inline ProblemDiagnostics diagnose(const LocalProblemView& p) {
   ProblemDiagnostics d;
   d.columns_H = p.size();
-  const SparseMatrix W(p.W);
-  Vector eigenvalues;
-  detail::spectrum(W, d, &eigenvalues);
-  const bool dense_symmetric = fills_densely(W.nonZeros(), W.rows()) && d.asymmetry_W <= kSymmetryRoundoff;
-  if (W.rows() <= kDiagnosticsDenseLimit)
-    d.rank_H = dense_symmetric && eigenvalues.size() ? detail::spectral_rank(eigenvalues) : detail::sparse_rank(W);
+  detail::spectrum_and_rank(SparseMatrix(p.W), d, true);
   return d;
 }
 
