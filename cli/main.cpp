@@ -17,6 +17,7 @@
 #include "generate.hpp"
 #include "isolated_read.hpp"
 #include "json_writer.hpp"
+#include "memory_limit.hpp"
 
 #include <fcsolve/io/fclib.hpp>
 #include <fcsolve/nipm.hpp>
@@ -647,6 +648,8 @@ int main(int argc, char** argv) {
   const std::string command = argv[1];
   try {
     if (command == "bench" || command == "report") return cmd_campaign(command, argc, argv);
+    // Not for the campaign above: its peers run as child processes.
+    fcsolve_cli::cap_address_space_at_physical_memory();
     Args args = Args::parse(argc, argv, 2);
     if (command == "info") return cmd_info(args);
     if (command == "solve") return cmd_solve(args);

@@ -8,6 +8,7 @@ import re
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import h5py
@@ -344,3 +345,37 @@ def test_demo_table_rows_and_peer_column(with_siconos):
     assert ("siconos best" in lines[0]) == with_siconos
     rows = [line for line in lines if line.split()[:1] in (["Rover1039"], ["GFC3D_Example1"])]
     assert len(rows) == 2 and all("converged" in r for r in rows), p.stdout
+
+
+def _address_space_limit_of_a_running_solve(preexec=None):
+    # the soft "Max address space" of a solve that runs for 3 s (nsgs to an
+    # unreachable tol), read from /proc half a second in: the CLI sets its
+    # limit before it parses its arguments
+    p = subprocess.Popen([CLI, "solve", str(BUNDLED / "Capsules-i101-404.hdf5"), "--solver", "nsgs",
+                          "--tol", "1e-300", "--max-iter", "1000000000", "--max-time", "3"],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, preexec_fn=preexec)
+    try:
+        time.sleep(0.5)
+        assert p.poll() is None, "the solve ended before its limit could be read"
+        text = Path(f"/proc/{p.pid}/limits").read_text()
+        return next(l for l in text.splitlines() if l.startswith("Max address space")).split()[3]
+    finally:
+        p.kill()
+        p.wait()
+
+
+@pytest.mark.skipif(os.environ.get("FCSOLVE_SANITIZED") == "1" or not Path("/proc/self/limits").exists(),
+                    reason="AddressSanitizer builds set no limit; needs Linux /proc")
+def test_the_cli_caps_its_address_space_at_the_physical_memory():
+    # Linux overcommits: without a limit, a problem too large for the
+    # machine ends in the OOM killer instead of "out of memory" (exit 3)
+    physical = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    import resource
+    if resource.getrlimit(resource.RLIMIT_AS)[0] != resource.RLIM_INFINITY:
+        pytest.skip("this test process already runs under an address-space limit")
+    assert _address_space_limit_of_a_running_solve() == str(physical)
+    # a limit the caller set is kept
+    mine = 6 << 30
+    kept = _address_space_limit_of_a_running_solve(
+        lambda: resource.setrlimit(resource.RLIMIT_AS, (mine, resource.RLIM_INFINITY)))
+    assert kept == str(mine)
