@@ -5,7 +5,7 @@
 //                 [--repeat N] [--SETTING VALUE ...]
 //   fcsolve error FILE SOLUTION.hdf5 [--json]
 //   fcsolve solvers [--json]
-//   fcsolve check FILE [--json]   existence (Slater) check and diagnostics
+//   fcsolve check FILE [--max-time S] [--json]   existence (Slater) check and diagnostics
 //   fcsolve run FILE... [--solvers a,b,...] [--tol 1e-8] [--max-time S]
 //   fcsolve generate SCENE [--contacts N] [--seed S] [--mu X] [--mass-ratio R]
 //                 [--penetration-correction B] [--steps K] [--out F.hdf5] [--local-out F.hdf5]
@@ -31,6 +31,7 @@
 
 #include <cerrno>
 #include <climits>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -64,7 +65,7 @@ const char* kUsage =
     "      --repeat N (1): solve N times in this process, report the fastest (hot loop)\n"
     "  error FILE SOLUTION.hdf5 [--json]        FCLIB error of a stored /solution (r [, v])\n"
     "  solvers [--json]                         list solvers and their settings\n"
-    "  check FILE [--json]                      existence check (Slater SOC program) and\n"
+    "  check FILE [--max-time S] [--json]       existence check (Slater SOC program) and\n"
     "                                           diagnostics: d nc / n, rank(H), cond(W)\n"
     "  run FILE... [--solvers a,b] [--tol X] [--max-time S]\n"
     "                                           solve many files, print a table\n"
@@ -78,7 +79,7 @@ const char* kUsage =
     "        [--out DIR] [--jobs N] [--dask ADDRESS] [--report]   benchmark campaign (CSV)\n"
     "  report DIR                               charts and HTML page of a campaign\n"
     "  version                                  print the version\n"
-    "exit codes: 0 solved, 1 tolerance not reached, 2 bad input or usage\n";
+    "exit codes: 0 solved, 1 tolerance not reached, 2 bad input or usage, 3 internal error or out of memory\n";
 
 /// Command-line arguments: positionals and --key [value] options.
 struct Args {
@@ -409,13 +410,17 @@ int cmd_error(Args args) {
 /// Slater's assumption (ipm/existence_check.hpp) and cheap diagnostics.
 int cmd_check(Args args) {
   const bool json = args.flag("json");
+  double max_time = std::numeric_limits<double>::infinity();
+  if (auto v = args.take("max-time")) max_time = parse_double("max-time", *v);
+  if (!(max_time > 0)) throw UsageError("--max-time must be positive (seconds)");
   args.expect_no_more_options();
   if (args.positional.size() != 1) throw UsageError("check takes exactly one FILE");
   const std::string path = args.positional[0];
   const fclib::Problem problem = read_untrusted(path);
   const auto [ex, dg] = std::visit(
-      [](const auto& p) {
-        return std::make_pair(ipm::check_existence(p), ipm::diagnose(p));
+      [&](const auto& p) {
+        ipm::ExistenceReport report = ipm::check_existence(p, 1e-10, max_time);
+        return std::make_pair(std::move(report), ipm::diagnose(p));
       },
       problem);
   const bool global = std::holds_alternative<GlobalProblem>(problem);

@@ -572,8 +572,8 @@ void check_certificate(const LocalProblem& p, const ExistenceReport& rep) {
 
 void check_both_forms(const LocalProblem& p, bool exists) {
   const ExistenceReport global =
-      ipm::detail::solve_existence<Coulomb3D, DefaultBackend>(SparseMatrix(p.W.transpose()), p.q, p.mu, 1e-10);
-  const ExistenceReport reduced = ipm::detail::solve_existence_dense<Coulomb3D>(p.W, p.q, p.mu, 1e-10);
+      ipm::detail::solve_existence<Coulomb3D, DefaultBackend>(SparseMatrix(p.W.transpose()), p.q, p.mu, ipm::detail::ExistenceBudget(1e-10));
+  const ExistenceReport reduced = ipm::detail::solve_existence_dense<Coulomb3D>(p.W, p.q, p.mu, ipm::detail::ExistenceBudget(1e-10));
   for (const ExistenceReport* rep : {&global, &reduced}) {
     CAPTURE(rep == &reduced, rep->info.message);
     CHECK(rep->slater == exists);

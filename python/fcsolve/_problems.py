@@ -385,7 +385,7 @@ def _interior_point_tool(name):
             "fcsolve does not have") from None
 
 
-def check_existence(problem, tol=1e-10):
+def check_existence(problem, tol=1e-10, max_time=None):
     """Numerical check of the existence assumption (Acary & Cadoux 2013;
     Acary, Cadoux, Lemarechal & Malick 2011, Thm 3.3): is there v with
     H^T v + w strictly inside the dual cones K* (for a LocalProblem: r with
@@ -403,9 +403,16 @@ def check_existence(problem, tol=1e-10):
     check_program: 'global-form' for a GlobalProblem; for a LocalProblem
     'cholesky-form' (sparse W: H^T replaced by a sparse Cholesky factor of
     W + eps I, FC/I's metric), 'reduced-form' (dense W) or 'w-form' (H^T = W,
-    where that factorisation failed). Needs
+    where that factorisation failed). max_time (seconds, None: unlimited)
+    bounds the check from its start, honoured between the program's
+    iterations: a program cut by it has check_status 'timeout' and, unless
+    the witness it had reached is certified, verdict 'not-established'. Needs
     friction cones (d = 2 or 3). NotImplementedError if this build lacks the
     interior-point family."""
     if not isinstance(problem, _Problem):
         raise TypeError("problem must be an fcsolve.LocalProblem or fcsolve.GlobalProblem")
-    return _interior_point_tool("check_existence")(problem._data, tol)
+    if max_time is None:
+        max_time = float("inf")
+    elif not max_time > 0:
+        raise ValueError("max_time must be positive (None: unlimited)")
+    return _interior_point_tool("check_existence")(problem._data, tol, float(max_time))

@@ -385,6 +385,21 @@ def test_existence_check_gives_a_certificate(name):
 
 
 @needs_checks
+def test_existence_check_honours_max_time():
+    # Capsules (675 columns): cut at 1 us the program reports a timeout and
+    # claims a solution only with a certified witness; max_time must be > 0
+    P = fcsolve.load(data_file("Capsules-i101-404.hdf5"))
+    rep = fcsolve.check_existence(P, max_time=1e-6)
+    assert rep["check_status"] == "timeout"
+    assert (rep["verdict"] == "solution-exists") == (rep["margin"] > 0)
+    full = fcsolve.check_existence(P, max_time=60)
+    assert full["check_status"] != "timeout" and full["verdict"] == "solution-exists"
+    for bad in (0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="max_time"):
+            fcsolve.check_existence(P, max_time=bad)
+
+
+@needs_checks
 def test_existence_check_without_a_slater_point():
     # W has no normal coupling: u_N = q_N = -1 for every r, never inside K*
     P = fcsolve.LocalProblem(np.diag([0.0, 1.0, 1.0]), [-1.0, 0.0, 0.0], [0.5])

@@ -190,3 +190,25 @@ def test_check_of_both_forms_of_a_heavy_on_light_stack(tmp_path):
     assert verdicts == {"global": "solution-exists", "local": "solution-exists"}
     text = run("check", local)
     assert "check_program=" in text.stdout, text.stdout
+
+
+def test_check_honours_max_time(tmp_path):
+    # a box stack of 300 contacts: its program needs some 20 interior-point
+    # iterations; cut at 1 ms it reports check_status timeout, and says a
+    # solution exists only if the witness it had reached is certified
+    # (margin > 0, checked against the data); unlimited it converges
+    out, local, _ = generate(tmp_path, "box-stack", contacts=300)
+    for path in (out, local):
+        full = run("check", path, "--json")
+        assert full.returncode == 0, full.stderr
+        d = json.loads(full.stdout)
+        assert d["check_status"] == "converged" and d["verdict"] == "solution-exists", d
+        cut = run("check", path, "--max-time", "0.001", "--json")
+        assert cut.returncode == 0, cut.stderr
+        c = json.loads(cut.stdout)
+        assert c["check_status"] == "timeout", c
+        assert (c["verdict"] == "solution-exists") == (c["margin"] > 0), c
+        assert c["m"] == d["m"] and c["lambda_max_W"] == d["lambda_max_W"], c  # the diagnostics still run
+    for bad in ("0", "-1", "nan"):
+        p = run("check", out, "--max-time", bad)
+        assert p.returncode == 2 and "max-time" in p.stderr, (bad, p.stderr)

@@ -57,12 +57,14 @@
 // are checked in 11 to 34 s.
 #pragma once
 
+#include <fcsolve/core/timer.hpp>
 #include <fcsolve/ipm/local_form.hpp>
 #include <fcsolve/ipm/socqp_ipm.hpp>
 #include <fcsolve/problem/local_problem.hpp>
 
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -100,24 +102,36 @@ void certify(ExistenceReport& rep, const Vector& u, const Eigen::Ref<const Vecto
 }
 
 /// The interior point's settings for the homogenised program.
-inline IpmSettings existence_settings(double tol) {
-  IpmSettings s;
-  s.tol = tol;
-  s.max_iter = 100;
-  // No natural-map polish: the verdict rests on the witness' certificate,
-  // not on the last digits of x*. Measured (docs/results.md, stop 64): the
-  // same verdicts, x* and margins on 94 of the 96 problems checked (the
-  // other two not established either way), and a pile of 5000 in 2.6 s
-  // instead of 51 s, spent in the polish's UMFPACK factorisations.
-  s.polish = false;
-  return s;
-}
+/// The program's tolerance and the check's wall-clock limit, counted from
+/// check_existence's start (the factorisations before the interior point
+/// count too; the time is honoured between its iterations).
+struct ExistenceBudget {
+  explicit ExistenceBudget(double tol = 1e-10, double max_time = std::numeric_limits<double>::infinity())
+      : tol(tol), max_time(max_time) {}
+  double tol;
+  double max_time;
+  Stopwatch clock;
+
+  IpmSettings settings() const {
+    IpmSettings s;
+    s.tol = tol;
+    s.max_iter = 100;
+    s.max_time = std::max(0.0, max_time - clock.seconds());
+    // No natural-map polish: the verdict rests on the witness' certificate,
+    // not on the last digits of x*. Measured (docs/results.md, stop 64): the
+    // same verdicts, x* and margins on 94 of the 96 problems checked (the
+    // other two not established either way), and a pile of 5000 in 2.6 s
+    // instead of 51 s, spent in the polish's UMFPACK factorisations.
+    s.polish = false;
+    return s;
+  }
+};
 
 /// Builds the homogenised program (header comment) and solves it. `Ht_rows`
 /// is the n x m matrix whose transpose acts on v (H, or W^T).
 template <class Cone, class Backend>
 ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
-                                const Eigen::Ref<const Vector>& mu, double tol) {
+                                const Eigen::Ref<const Vector>& mu, const ExistenceBudget& budget) {
   constexpr int D = Cone::dim;
   const Index n = Ht_rows.rows(), m = Ht_rows.cols(), nc = mu.size();
   double h = 0;
@@ -152,7 +166,7 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   g.mu.resize(nc + 1);
   g.mu.head(nc) = mu;
   g.mu[nc] = 1;
-  GlobalSocqpIpm<Cone, SparseKktFactorization<Backend>> ipm(existence_settings(tol));
+  GlobalSocqpIpm<Cone, SparseKktFactorization<Backend>> ipm(budget.settings());
   ipm.compute(g);
   Vector r = Vector::Zero(g.size()), v(g.num_dofs());
   ExistenceReport rep;
@@ -169,7 +183,7 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
 /// dense W: no factor of W is formed, W' is W / h^2 plus two rank-one terms.
 template <class Cone>
 ExistenceReport solve_existence_dense(const SparseMatrix& W, const Vector& q, const Eigen::Ref<const Vector>& mu,
-                                      double tol) {
+                                      const ExistenceBudget& budget) {
   constexpr int D = Cone::dim;
   const Index m = W.cols(), nc = mu.size(), mm = m + D;
   const double wmax = W.size() ? W.diagonal().maxCoeff() : 0.0;
@@ -194,7 +208,7 @@ ExistenceReport solve_existence_dense(const SparseMatrix& W, const Vector& q, co
   reduced.mu.resize(nc + 1);
   reduced.mu.head(nc) = mu;
   reduced.mu[nc] = 1;
-  LocalSocqpIpm<Cone, DenseCholeskyKktFactorization> ipm(existence_settings(tol));
+  LocalSocqpIpm<Cone, DenseCholeskyKktFactorization> ipm(budget.settings());
   ipm.compute(reduced);
   Vector r = Vector::Zero(mm), u(mm);
   ExistenceReport rep;
@@ -213,7 +227,7 @@ ExistenceReport solve_existence_dense(const SparseMatrix& W, const Vector& q, co
 /// factorisation succeed.
 template <class Cone, class Backend>
 ExistenceReport solve_existence_factored(const SparseMatrix& W, const Vector& q, const Eigen::Ref<const Vector>& mu,
-                                         double tol) {
+                                         const ExistenceBudget& budget) {
   constexpr int D = Cone::dim;
   const Index m = W.cols();
   const SparseMatrix Ws = 0.5 * (W + SparseMatrix(W.transpose()));
@@ -226,13 +240,13 @@ ExistenceReport solve_existence_factored(const SparseMatrix& W, const Vector& q,
     if (llt.info() == Eigen::Success) break;
   }
   if (llt.info() != Eigen::Success) {
-    ExistenceReport rep = solve_existence<Cone, Backend>(SparseMatrix(W.transpose()), q, mu, tol);
+    ExistenceReport rep = solve_existence<Cone, Backend>(SparseMatrix(W.transpose()), q, mu, budget);
     rep.program = "w-form";
     return rep;
   }
   // P (W_s + eps I) P^T = L L^T, so W_s + eps I = L~ L~^T with L~ = P^T L.
   const SparseMatrix Lt = llt.permutationPinv() * SparseMatrix(llt.matrixL());
-  ExistenceReport rep = solve_existence<Cone, Backend>(SparseMatrix(Lt.transpose()), q, mu, tol);
+  ExistenceReport rep = solve_existence<Cone, Backend>(SparseMatrix(Lt.transpose()), q, mu, budget);
   const bool found = rep.witness_found;
   rep.witness = found ? Vector(llt.solve(Vector(Lt * rep.witness))) : Vector(Vector::Zero(m));
   certify<D>(rep, Vector(W * rep.witness + q), mu, found);
@@ -257,9 +271,11 @@ ExistenceReport with_friction_cone(const View& p, Solve&& solve) {
 
 /// Slater's assumption for FC/I: max x s.t. H^T v + w - a x in K*.
 template <class Backend = DefaultBackend>
-ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10) {
+ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10,
+                                double max_time = std::numeric_limits<double>::infinity()) {
+  const detail::ExistenceBudget budget(tol, max_time);
   return detail::with_friction_cone(p, [&](auto cone) {
-    return detail::solve_existence<decltype(cone), Backend>(SparseMatrix(p.H), Vector(p.w), p.mu, tol);
+    return detail::solve_existence<decltype(cone), Backend>(SparseMatrix(p.H), Vector(p.w), p.mu, budget);
   });
 }
 
@@ -267,12 +283,14 @@ ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10) 
 /// kDenseKktFill or more goes to the reduced form, a sparse one to the
 /// Cholesky form (header).
 template <class Backend = DefaultBackend>
-ExistenceReport check_existence(const LocalProblemView& p, double tol = 1e-10) {
+ExistenceReport check_existence(const LocalProblemView& p, double tol = 1e-10,
+                                double max_time = std::numeric_limits<double>::infinity()) {
+  const detail::ExistenceBudget budget(tol, max_time);
   return detail::with_friction_cone(p, [&](auto cone) {
     using Cone = decltype(cone);
     const SparseMatrix W(p.W);
-    if (fills_densely(W.nonZeros(), p.size())) return detail::solve_existence_dense<Cone>(W, Vector(p.q), p.mu, tol);
-    return detail::solve_existence_factored<Cone, Backend>(W, Vector(p.q), p.mu, tol);
+    if (fills_densely(W.nonZeros(), p.size())) return detail::solve_existence_dense<Cone>(W, Vector(p.q), p.mu, budget);
+    return detail::solve_existence_factored<Cone, Backend>(W, Vector(p.q), p.mu, budget);
   });
 }
 
