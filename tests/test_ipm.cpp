@@ -550,6 +550,10 @@ TEST_CASE("Existence check: Slater's assumption", "[ipm][existence]") {
   SECTION("local form: range of W") {
     const auto p = std::get<LocalProblem>(fclib::read_problem(fcsolve_test::bundled("Rover1039.hdf5")));
     CHECK(check_existence(p).slater);
+    // max_time: a positive number of seconds, or inf
+    CHECK(check_existence(p, 1e-10, std::numeric_limits<double>::infinity()).slater);
+    for (const double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()})
+      CHECK_THROWS_AS(check_existence(p, 1e-10, bad), UsageError);
   }
 }
 

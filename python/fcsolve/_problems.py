@@ -114,8 +114,9 @@ class _Problem:
         eigenvalues and condition number of the symmetric part of W
         (lambda_min_W, lambda_max_W, cond_W: a sparse W's by Lanczos at any
         size, lambda_min_W 0 where the rank is below m and NaN where W has no
-        Cholesky factor, cond_W inf then; a dense W's, and a global problem's,
-        NaN when m > 3000) and the relative asymmetry of W. A global problem is reduced to get W.
+        Cholesky factor, cond_W inf then; a dense W's, and a global
+        problem's, NaN when m > 3000) and the relative asymmetry of W. A
+        global problem is reduced to get W.
         NotImplementedError if this build lacks the interior-point family."""
         return _interior_point_tool("diagnostics")(self._data)
 

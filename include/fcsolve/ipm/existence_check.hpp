@@ -107,7 +107,9 @@ void certify(ExistenceReport& rep, const Vector& u, const Eigen::Ref<const Vecto
 /// count too; the time is honoured between its iterations).
 struct ExistenceBudget {
   explicit ExistenceBudget(double tol = 1e-10, double max_time = std::numeric_limits<double>::infinity())
-      : tol(tol), max_time(max_time) {}
+      : tol(tol), max_time(max_time) {
+    if (!(max_time > 0)) throw UsageError("the existence check's max_time must be positive (seconds; inf: no limit)");
+  }
   double tol;
   double max_time;
   Stopwatch clock;
