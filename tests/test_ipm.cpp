@@ -575,9 +575,10 @@ void check_certificate(const LocalProblem& p, const ExistenceReport& rep) {
 }
 
 void check_both_forms(const LocalProblem& p, bool exists) {
+  const ipm::detail::ExistenceBudget budget(1e-10);  // no time limit
   const ExistenceReport global =
-      ipm::detail::solve_existence<Coulomb3D, DefaultBackend>(SparseMatrix(p.W.transpose()), p.q, p.mu, ipm::detail::ExistenceBudget(1e-10));
-  const ExistenceReport reduced = ipm::detail::solve_existence_dense<Coulomb3D>(p.W, p.q, p.mu, ipm::detail::ExistenceBudget(1e-10));
+      ipm::detail::solve_existence<Coulomb3D, DefaultBackend>(SparseMatrix(p.W.transpose()), p.q, p.mu, budget);
+  const ExistenceReport reduced = ipm::detail::solve_existence_dense<Coulomb3D>(p.W, p.q, p.mu, budget);
   for (const ExistenceReport* rep : {&global, &reduced}) {
     CAPTURE(rep == &reduced, rep->info.message);
     CHECK(rep->slater == exists);

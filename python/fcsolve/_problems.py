@@ -412,8 +412,6 @@ def check_existence(problem, tol=1e-10, max_time=None):
     interior-point family."""
     if not isinstance(problem, _Problem):
         raise TypeError("problem must be an fcsolve.LocalProblem or fcsolve.GlobalProblem")
-    if max_time is None:
-        max_time = float("inf")
-    elif not max_time > 0:
-        raise ValueError("max_time must be positive (None: unlimited)")
-    return _interior_point_tool("check_existence")(problem._data, tol, float(max_time))
+    # the C++ check refuses a max_time that is not positive (fcsolve.UsageError)
+    max_time = float("inf") if max_time is None else float(max_time)
+    return _interior_point_tool("check_existence")(problem._data, tol, max_time)

@@ -61,6 +61,7 @@
 #include <fcsolve/ipm/local_form.hpp>
 #include <fcsolve/ipm/socqp_ipm.hpp>
 #include <fcsolve/problem/local_problem.hpp>
+#include <fcsolve/problem/symmetry.hpp>
 
 #include <Eigen/SparseCholesky>
 
@@ -101,7 +102,6 @@ void certify(ExistenceReport& rep, const Vector& u, const Eigen::Ref<const Vecto
   rep.slater = witness_found && rep.margin > 1e-9 * scale;
 }
 
-/// The interior point's settings for the homogenised program.
 /// The program's tolerance and the check's wall-clock limit, counted from
 /// check_existence's start (the factorisations before the interior point
 /// count too; the time is honoured between its iterations).
@@ -232,7 +232,7 @@ ExistenceReport solve_existence_factored(const SparseMatrix& W, const Vector& q,
                                          const ExistenceBudget& budget) {
   constexpr int D = Cone::dim;
   const Index m = W.cols();
-  const SparseMatrix Ws = 0.5 * (W + SparseMatrix(W.transpose()));
+  const SparseMatrix Ws = symmetric_part(W);
   const double dmax = m ? Ws.diagonal().maxCoeff() : 0.0;
   SparseMatrix identity(m, m);
   identity.setIdentity();
