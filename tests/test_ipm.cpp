@@ -358,6 +358,37 @@ TEST_CASE("The rank of a dense symmetric W from its eigenvalues", "[ipm][rank]")
   }
 }
 
+TEST_CASE("The extreme eigenvalues of a dense positive definite W, in closed form", "[ipm][rank]") {
+  // W = Q diag(lambda) Q^T, Q orthogonal, lambda from 1/2 to 40: a dense
+  // Cholesky factor and Lanczos give lambda_min, lambda_max, cond 80 and full
+  // rank. With lambda_1 = 0 there is no such room (no factor, or lambda_min
+  // at the rank threshold): the eigensolver gives rank 89 and lambda_min 0.
+  const Index m = 90;
+  std::mt19937 gen(17);
+  std::normal_distribution<double> normal;
+  DenseMatrix G(m, m);
+  for (Index j = 0; j < m; ++j)
+    for (Index i = 0; i < m; ++i) G(i, j) = normal(gen);
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(G).householderQ();
+  Vector lambda = Vector::LinSpaced(m, 0.5, 40.0);
+  const auto diagnose_with = [&](const Vector& spectrum) {
+    const DenseMatrix W = Q * spectrum.asDiagonal() * Q.transpose();
+    return diagnose(fcsolve_test::make_local(3, DenseMatrix(0.5 * (W + W.transpose())), Vector::Constant(m, -1.0),
+                                             Vector::Constant(m / 3, 0.3)));
+  };
+  const auto d = diagnose_with(lambda);
+  CHECK(d.lambda_min_W == Approx(0.5).epsilon(1e-9));
+  CHECK(d.lambda_max_W == Approx(40.0).epsilon(1e-9));
+  CHECK(d.cond_W == Approx(80.0).epsilon(1e-8));
+  CHECK(d.rank_H == m);
+  lambda[0] = 0;
+  const auto singular = diagnose_with(lambda);
+  CHECK(singular.rank_H == m - 1);
+  CHECK(std::abs(singular.lambda_min_W) <= 1e-12);
+  CHECK(singular.lambda_max_W == Approx(40.0).epsilon(1e-12));
+  CHECK(singular.cond_W >= 1e12);  // inf, or lambda_max over a roundoff lambda_min
+}
+
 TEST_CASE("Lanczos finds the largest eigenvalue of a symmetric operator", "[ipm][lanczos]") {
   // Against the dense eigensolver: a sparse SPD matrix and a singular PSD
   // one (B B^T of rank k < m), as a diagnostics' W is.
