@@ -430,8 +430,8 @@ int cmd_check(Args args) {
     w.begin_object().field("file", path).field("kind", global ? "global" : "local");
     w.field("x_star", ex.x).field("slater", ex.slater).field("verdict", verdict);
     w.field("witness_norm", ex.witness_norm).field("margin", ex.margin);
-    w.field("check_error", ex.solver_error).field("check_status", to_string(ex.info.status));
-    w.field("check_program", ex.program);
+    w.field("check_error", ex.solver_error).field("check_status", ipm::check_status(ex));
+    w.field("check_iterations", (long long)ex.info.iterations).field("check_program", ex.program);
     if (global) w.field("contact_ratio", dg.contact_ratio);
     w.field(global ? "rank_H" : "rank_W", (long long)dg.rank_H).field("m", (long long)dg.columns_H);
     w.field("lambda_min_W", dg.lambda_min_W).field("lambda_max_W", dg.lambda_max_W);
@@ -442,7 +442,7 @@ int cmd_check(Args args) {
   }
   std::cout << "file=" << path << " x_star=" << fmt(ex.x, "%.6e") << " verdict=" << verdict
             << " witness_norm=" << fmt(ex.witness_norm, "%.6e") << " margin=" << fmt(ex.margin, "%.6e")
-            << " check_status=" << to_string(ex.info.status) << " check_program=" << ex.program << "\n";
+            << " check_status=" << ipm::check_status(ex) << " check_program=" << ex.program << "\n";
   std::cout << (global ? "contact_ratio=" + fmt(dg.contact_ratio, "%.4g") + " rank_H=" : "rank_W=")
             << (dg.rank_H >= 0 ? std::to_string(dg.rank_H) : std::string("nan")) << "/" << dg.columns_H
             << " lambda_min_W=" << fmt(dg.lambda_min_W)

@@ -17,6 +17,8 @@
 #include <limits>
 
 #include <random>
+#include <type_traits>
+#include <variant>
 
 using namespace fcsolve;
 using namespace fcsolve::ipm;
@@ -624,6 +626,57 @@ void check_both_forms(const LocalProblem& p, bool exists) {
 }
 
 }  // namespace
+
+TEST_CASE("Existence check: the program stops at its first certified witness", "[ipm][existence]") {
+  // The bundled problems of both kinds, every program (FC/I's global form,
+  // FC/II's Cholesky form, a dense W's reduced form): stopped early, the
+  // verdict is that of the program run to its optimum, the witness is
+  // certified here against the data, x > 0, and where it stopped it took
+  // fewer iterations than the optimum did.
+  int stopped_early = 0;
+  std::vector<std::string> files = fcsolve_test::bundled_files("local");
+  for (const auto& f : fcsolve_test::bundled_files("global")) files.push_back(f);
+  for (const auto& name : files) {
+    CAPTURE(name);
+    const fclib::Problem problem = fclib::read_problem(name);
+    std::visit(
+        [&](const auto& p) {
+          ipm::detail::ExistenceBudget full_budget(1e-10);
+          full_budget.stop_at_certified = false;
+          const auto run = [&p](const ipm::detail::ExistenceBudget& budget) {
+            return ipm::detail::with_friction_cone(p, [&](auto cone) {
+              using Cone = decltype(cone);
+              if constexpr (std::is_same_v<std::decay_t<decltype(p)>, GlobalProblem>)
+                return ipm::detail::solve_existence<Cone, DefaultBackend>(SparseMatrix(p.H), Vector(p.w), p.mu, budget);
+              else if (fills_densely(p.W.nonZeros(), p.size()))
+                return ipm::detail::solve_existence_dense<Cone>(SparseMatrix(p.W), Vector(p.q), p.mu, budget);
+              else
+                return ipm::detail::solve_existence_factored<Cone, DefaultBackend>(SparseMatrix(p.W), Vector(p.q), p.mu,
+                                                                                   budget);
+            });
+          };
+          const ExistenceReport full = run(full_budget);
+          const ExistenceReport early = run(ipm::detail::ExistenceBudget(1e-10));
+          CAPTURE(full.info.message, early.info.message);
+          CHECK(early.slater == full.slater);
+          CHECK(full.stopped_certified == false);
+          if (!early.stopped_certified) return;
+          ++stopped_early;
+          CHECK(ipm::check_status(early) == "certified");
+          CHECK(early.x > 0);
+          CHECK(early.info.iterations < full.info.iterations);
+          Vector u;
+          if constexpr (std::is_same_v<std::decay_t<decltype(p)>, GlobalProblem>) u = p.H.transpose() * early.witness + p.w;
+          else u = p.W * early.witness + p.q;
+          double margin = std::numeric_limits<double>::infinity();
+          for (Index a = 0; a < p.num_contacts(); ++a)
+            margin = std::min(margin, u[3 * a] - p.mu[a] * u.template segment<2>(3 * a + 1).norm());
+          CHECK(margin > 1e-9 * u.cwiseAbs().maxCoeff());
+        },
+        problem);
+  }
+  CHECK(stopped_early >= 3);
+}
 
 TEST_CASE("Existence check of FC/II with a dense W: the reduced program", "[ipm][existence]") {
   std::mt19937 gen(7);

@@ -398,7 +398,8 @@ def check_existence(problem, tol=1e-10, max_time=None):
     'not-established'), x_star (optimal value of the program, > 0 iff the
     assumption holds; its size depends on the program's form, e.g. a
     LocalProblem with a dense W runs the reduced form, the verdict does
-    not), witness (v, or r for a local problem), witness_norm,
+    not; where the program stopped at its first certified witness,
+    check_status 'certified', x_star is that iterate's), witness (v, or r for a local problem), witness_norm,
     margin (min over contacts of u_N - mu ||u_T|| at the witness), and the
     program's own check_error, check_status, check_iterations, and
     check_program: 'global-form' for a GlobalProblem; for a LocalProblem

@@ -293,7 +293,7 @@ py::dict existence_dict(const Data& data, double tol, double max_time) {
                   "x_star"_a = rep.x, "margin"_a = rep.margin,
                   "witness"_a = py::array_t<double>(rep.witness.size(), rep.witness.data()),
                   "witness_norm"_a = rep.witness_norm, "check_error"_a = rep.solver_error,
-                  "check_status"_a = fcsolve::to_string(rep.info.status),
+                  "check_status"_a = fcsolve::ipm::check_status(rep),
                   "check_iterations"_a = rep.info.iterations, "check_program"_a = rep.program);
 }
 

@@ -196,17 +196,22 @@ def test_check_honours_max_time(tmp_path):
     # a box stack of 300 contacts: its program needs some 20 interior-point
     # iterations; cut at 1 ms it reports check_status timeout, and says a
     # solution exists only if the witness it had reached is certified
-    # (margin > 0, checked against the data); unlimited it converges
+    # (margin > 0, checked against the data); unlimited it stops at its
+    # first certified witness (or converges)
     out, local, _ = generate(tmp_path, "box-stack", contacts=300)
     for path in (out, local):
         full = run("check", path, "--json")
         assert full.returncode == 0, full.stderr
         d = json.loads(full.stdout)
-        assert d["check_status"] == "converged" and d["verdict"] == "solution-exists", d
+        assert d["check_status"] in ("certified", "converged") and d["verdict"] == "solution-exists", d
+        assert d["x_star"] > 0 and d["margin"] > 0 and d["check_iterations"] > 0, d
         cut = run("check", path, "--max-time", "0.001", "--json")
         assert cut.returncode == 0, cut.stderr
         c = json.loads(cut.stdout)
-        assert c["check_status"] == "timeout", c
+        # the clock is read after each iteration's certificate: on a loaded
+        # machine the first iterations can outlast 1 ms and certify first
+        assert c["check_status"] == "timeout" or (
+            c["check_status"] == "certified" and c["check_iterations"] <= d["check_iterations"]), (c, d)
         assert (c["verdict"] == "solution-exists") == (c["margin"] > 0), c
         assert c["m"] == d["m"] and c["lambda_max_W"] == d["lambda_max_W"], c  # the diagnostics still run
     for bad in ("0", "-1", "nan"):

@@ -20,6 +20,10 @@
 // assumption is reported to hold iff u = H^T v + w has the positive margin
 //   min_a ( u_N^a - mu_a ||u_T^a|| ) > 1e-9 ||u||inf,
 // i.e. u is strictly inside K* (a certificate, evaluated in floating point).
+// The certificate is evaluated at every iterate of the program, which stops
+// at the first certified one with x > 0 (stop_when_certified): the verdict
+// is then proven and x is that iterate's, not the optimum. It runs to the
+// optimum only where no witness is certified on the way.
 //
 // For FC/II (only W, q): {H^T v + w} = {W r + q : r in R^m} when
 // W = H^T M^-1 H and q = H^T M^-1 f + w (M SPD), so the same check runs with
@@ -85,7 +89,16 @@ struct ExistenceReport {
   /// W), "reduced-form" (dense W) or "w-form" (H^T = W, where the Cholesky
   /// factorisation failed).
   const char* program = "global-form";
+  /// The program stopped at its first iterate with a certified witness
+  /// (stop_when_certified): x is that iterate's, not the optimum.
+  bool stopped_certified = false;
 };
+
+/// The program's status as reported (`check_status`): "certified" where it
+/// stopped at a certified witness, else its SolverInfo status.
+inline std::string check_status(const ExistenceReport& rep) {
+  return rep.stopped_certified ? std::string("certified") : to_string(rep.info.status);
+}
 
 namespace detail {
 
@@ -112,6 +125,9 @@ struct ExistenceBudget {
   }
   double tol;
   double max_time;
+  /// Stop at the first certified witness (stop_when_certified); false runs
+  /// the program to its optimum (tests compare the two).
+  bool stop_at_certified = true;
   Stopwatch clock;
 
   IpmSettings settings() const {
@@ -129,11 +145,64 @@ struct ExistenceBudget {
   }
 };
 
+/// Ends the program at the first iterate whose witness is certified: the
+/// verdict rests on the certificate, not on x*, and along the path the
+/// witnesses become certified well before the optimum (a pile of 5000
+/// contacts with penetration correction, FC/II: from the 12th of 22
+/// iterations; docs/results.md, stop 68). `evaluate(rep, r, w)` fills a
+/// report (x, witness, certificate) from the program's point (r, w).
+/// After the solve, `early` holds the certified report if the program
+/// stopped there.
+template <class Ipm, class Evaluate>
+void stop_when_certified(Ipm& ipm, ExistenceReport& early, const Evaluate& evaluate) {
+  ipm.settings().callback = [&ipm, &early, &evaluate](const IterationInfo&) {
+    Vector r, w;
+    ipm.current_point(r, w);
+    ExistenceReport candidate;
+    evaluate(candidate, r, w);
+    if (!candidate.slater || !(candidate.x > 0)) return false;  // x* > 0 iff a solution exists
+    early = std::move(candidate);
+    early.stopped_certified = true;
+    return true;
+  };
+}
+
+/// Solves the program (with stop_when_certified unless the budget says
+/// otherwise) and returns the report of the certified iterate, or of the
+/// returned point (r, w).
+template <class Ipm, class Evaluate>
+ExistenceReport run_program(Ipm& ipm, Vector& r, Vector& w, const Evaluate& evaluate,
+                            const ExistenceBudget& budget) {
+  ExistenceReport early;
+  if (budget.stop_at_certified) stop_when_certified(ipm, early, evaluate);
+  const SolverInfo info = ipm.solve(r, w);
+  ExistenceReport rep;
+  if (early.stopped_certified) rep = std::move(early);
+  else evaluate(rep, r, w);
+  rep.info = info;
+  rep.solver_error = info.error;
+  return rep;
+}
+
+/// The certificate of the program's witness v (data units): H^T v + w.
+struct CertifyAgainstH {
+  const SparseMatrix& Ht_rows;
+  const Vector& w;
+  template <int D>
+  void apply(ExistenceReport& rep, Vector v, const Eigen::Ref<const Vector>& mu, bool found) const {
+    rep.witness = std::move(v);
+    certify<D>(rep, Vector(Ht_rows.transpose() * rep.witness + w), mu, found);
+  }
+};
+
 /// Builds the homogenised program (header comment) and solves it. `Ht_rows`
-/// is the n x m matrix whose transpose acts on v (H, or W^T).
-template <class Cone, class Backend>
-ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
-                                const Eigen::Ref<const Vector>& mu, const ExistenceBudget& budget) {
+/// is the n x m matrix whose transpose acts on v (H, or W^T). `certifier`
+/// maps the program's witness v to the report's witness and certifies it
+/// (apply<D>(rep, v, mu, found)): against H^T v + w, or for the FC/II
+/// Cholesky form against W r + q.
+template <class Cone, class Backend, class Certifier>
+ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w, const Eigen::Ref<const Vector>& mu,
+                                const ExistenceBudget& budget, const Certifier& certifier) {
   constexpr int D = Cone::dim;
   const Index n = Ht_rows.rows(), m = Ht_rows.cols(), nc = mu.size();
   double h = 0;
@@ -171,14 +240,20 @@ ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w,
   GlobalSocqpIpm<Cone, SparseKktFactorization<Backend>> ipm(budget.settings());
   ipm.compute(g);
   Vector r = Vector::Zero(g.size()), v(g.num_dofs());
-  ExistenceReport rep;
-  rep.info = ipm.solve(r, v);
-  rep.solver_error = rep.info.error;
-  rep.x = v[xr];
-  const double tau = v[tr] / omega;  // the t of the data's units
-  rep.witness = tau > 0 ? Vector(v.head(n) / (h * tau)) : Vector(Vector::Zero(n));
-  certify<D>(rep, Vector(Ht_rows.transpose() * rep.witness + w), mu, tau > 0);
-  return rep;
+  const auto evaluate = [&](ExistenceReport& rep, const Vector&, const Vector& point) {
+    rep.x = point[xr];
+    const double tau = point[tr] / omega;  // the t of the data's units
+    certifier.template apply<D>(rep, tau > 0 ? Vector(point.head(n) / (h * tau)) : Vector(Vector::Zero(n)), mu,
+                                tau > 0);
+  };
+  return run_program(ipm, r, v, evaluate, budget);
+}
+
+/// The same, certified against H^T v + w (FC/I, and FC/II's w-form).
+template <class Cone, class Backend>
+ExistenceReport solve_existence(const SparseMatrix& Ht_rows, const Vector& w, const Eigen::Ref<const Vector>& mu,
+                                const ExistenceBudget& budget) {
+  return solve_existence<Cone, Backend>(Ht_rows, w, mu, budget, CertifyAgainstH{Ht_rows, w});
 }
 
 /// The FC/II check on the program's reduced form (header comment), for a
@@ -213,16 +288,31 @@ ExistenceReport solve_existence_dense(const SparseMatrix& W, const Vector& q, co
   LocalSocqpIpm<Cone, DenseCholeskyKktFactorization> ipm(budget.settings());
   ipm.compute(reduced);
   Vector r = Vector::Zero(mm), u(mm);
-  ExistenceReport rep;
-  rep.info = ipm.solve(r, u);
-  rep.solver_error = rep.info.error;
-  rep.x = 1 + cx.dot(r);
-  const double tau = ct.dot(r) / omega;  // t of the data's units
-  rep.witness = tau > 0 ? Vector(r.head(m) / (h2 * tau)) : Vector(Vector::Zero(m));
-  certify<D>(rep, Vector(W * rep.witness + q), mu, tau > 0);
+  const auto evaluate = [&](ExistenceReport& rep, const Vector& point, const Vector&) {
+    rep.x = 1 + cx.dot(point);
+    const double tau = ct.dot(point) / omega;  // t of the data's units
+    rep.witness = tau > 0 ? Vector(point.head(m) / (h2 * tau)) : Vector(Vector::Zero(m));
+    certify<D>(rep, Vector(W * rep.witness + q), mu, tau > 0);
+  };
+  ExistenceReport rep = run_program(ipm, r, u, evaluate, budget);
   rep.program = "reduced-form";
   return rep;
 }
+
+/// The Cholesky form's certificate: the program's witness v gives r =
+/// (W_s + eps I)^-1 L~ v, certified as W r + q with W and q as given.
+template <class Llt>
+struct CertifyAgainstW {
+  const Llt& llt;
+  const SparseMatrix& Lt;
+  const SparseMatrix& W;
+  const Vector& q;
+  template <int D>
+  void apply(ExistenceReport& rep, const Vector& v, const Eigen::Ref<const Vector>& mu, bool found) const {
+    rep.witness = found ? Vector(llt.solve(Vector(Lt * v))) : Vector(Vector::Zero(W.cols()));
+    certify<D>(rep, Vector(W * rep.witness + q), mu, found);
+  }
+};
 
 /// The FC/II check on a sparse W: the global form with H^T = L~ (header
 /// comment); with H^T = W where no eps up to 1e-6 lets the Cholesky
@@ -230,7 +320,6 @@ ExistenceReport solve_existence_dense(const SparseMatrix& W, const Vector& q, co
 template <class Cone, class Backend>
 ExistenceReport solve_existence_factored(const SparseMatrix& W, const Vector& q, const Eigen::Ref<const Vector>& mu,
                                          const ExistenceBudget& budget) {
-  constexpr int D = Cone::dim;
   const Index m = W.cols();
   const SparseMatrix Ws = symmetric_part(W);
   const double dmax = m ? Ws.diagonal().maxCoeff() : 0.0;
@@ -248,10 +337,8 @@ ExistenceReport solve_existence_factored(const SparseMatrix& W, const Vector& q,
   }
   // P (W_s + eps I) P^T = L L^T, so W_s + eps I = L~ L~^T with L~ = P^T L.
   const SparseMatrix Lt = llt.permutationPinv() * SparseMatrix(llt.matrixL());
-  ExistenceReport rep = solve_existence<Cone, Backend>(SparseMatrix(Lt.transpose()), q, mu, budget);
-  const bool found = rep.witness_found;
-  rep.witness = found ? Vector(llt.solve(Vector(Lt * rep.witness))) : Vector(Vector::Zero(m));
-  certify<D>(rep, Vector(W * rep.witness + q), mu, found);
+  ExistenceReport rep =
+      solve_existence<Cone, Backend>(SparseMatrix(Lt.transpose()), q, mu, budget, CertifyAgainstW<decltype(llt)>{llt, Lt, W, q});
   rep.program = "cholesky-form";
   return rep;
 }

@@ -52,6 +52,9 @@ class IpmSolverBase {
   const SolverInfo& info() const { return info_; }
   const IpmStatistics& statistics() const { return stats_; }
   const Form& form() const { return *form_; }
+  /// The engine's current iterate as (r, w), w = v (global form) or u (local
+  /// form): for a callback that inspects the path while the solve runs.
+  void current_point(Vector& r, Vector& w) const { extract(it_, r, w); }
 
  protected:
   /// Validates the problem, checks what the IPM supports, builds the form.
