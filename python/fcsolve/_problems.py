@@ -393,16 +393,17 @@ def check_existence(problem, tol=1e-10, max_time=None):
     W r + q inside K*)? If so, the problem has a solution.
 
     Solves a homogenised second-order-cone program with the interior-point
-    method, then checks the witness it finds directly. Returns a dict:
-    slater (True: a solution exists), verdict ('solution-exists' or
-    'not-established'), x_star (optimal value of the program, > 0 iff the
-    assumption holds; its size depends on the program's form, e.g. a
-    LocalProblem with a dense W runs the reduced form, the verdict does
-    not; where the program stopped at its first certified witness,
-    check_status 'certified', x_star is that iterate's), witness (v, or r for a local problem), witness_norm,
-    margin (min over contacts of u_N - mu ||u_T|| at the witness), and the
-    program's own check_error, check_status, check_iterations, and
-    check_program: 'global-form' for a GlobalProblem; for a LocalProblem
+    method and checks the witness of every iterate directly, stopping at the
+    first certified one. Returns a dict: slater (True: a solution exists),
+    verdict ('solution-exists' or 'not-established'), x_star (optimal value
+    of the program, > 0 iff the assumption holds; its size depends on the
+    program's form, e.g. a LocalProblem with a dense W runs the reduced
+    form, the verdict does not; where the program stopped at a certified
+    witness, check_status 'certified', x_star is that iterate's), witness
+    (v, or r for a local problem), witness_norm, margin (min over contacts
+    of u_N - mu ||u_T|| at the witness), and the program's own
+    check_error, check_status, check_iterations, and check_program:
+    'global-form' for a GlobalProblem; for a LocalProblem
     'cholesky-form' (sparse W: H^T replaced by a sparse Cholesky factor of
     W + eps I, FC/I's metric), 'reduced-form' (dense W) or 'w-form' (H^T = W,
     where that factorisation failed). max_time (seconds, None: unlimited)
