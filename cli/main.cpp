@@ -5,7 +5,7 @@
 //                 [--repeat N] [--SETTING VALUE ...]
 //   fcsolve error FILE SOLUTION.hdf5 [--json]
 //   fcsolve solvers [--json]
-//   fcsolve check FILE [--max-time S] [--json]   existence (Slater) check and diagnostics
+//   fcsolve check FILE [--max-time S] [--to-optimum] [--json]   existence (Slater) check and diagnostics
 //   fcsolve run FILE... [--solvers a,b,...] [--tol 1e-8] [--max-time S]
 //   fcsolve generate SCENE [--contacts N] [--seed S] [--mu X] [--mass-ratio R]
 //                 [--penetration-correction B] [--steps K] [--out F.hdf5] [--local-out F.hdf5]
@@ -65,7 +65,9 @@ const char* kUsage =
     "      --repeat N (1): solve N times in this process, report the fastest (hot loop)\n"
     "  error FILE SOLUTION.hdf5 [--json]        FCLIB error of a stored /solution (r [, v])\n"
     "  solvers [--json]                         list solvers and their settings\n"
-    "  check FILE [--max-time S] [--json]       existence check (Slater SOC program) and\n"
+    "  check FILE [--max-time S] [--to-optimum] [--json]\n"
+    "                                           existence check (Slater SOC program; stops at the\n"
+    "                                           first certified witness unless --to-optimum) and\n"
     "                                           diagnostics: d nc / n, rank(H), cond(W)\n"
     "  run FILE... [--solvers a,b] [--tol X] [--max-time S]\n"
     "                                           solve many files, print a table\n"
@@ -413,13 +415,15 @@ int cmd_check(Args args) {
   double max_time = std::numeric_limits<double>::infinity();
   if (auto v = args.take("max-time")) max_time = parse_double("max-time", *v);
   if (!(max_time > 0)) throw UsageError("--max-time must be positive (seconds)");
+  const ipm::ExistenceStop stop =
+      args.flag("to-optimum") ? ipm::ExistenceStop::AtOptimum : ipm::ExistenceStop::AtCertifiedWitness;
   args.expect_no_more_options();
   if (args.positional.size() != 1) throw UsageError("check takes exactly one FILE");
   const std::string path = args.positional[0];
   const fclib::Problem problem = read_untrusted(path);
   const auto [ex, dg] = std::visit(
       [&](const auto& p) {
-        ipm::ExistenceReport report = ipm::check_existence(p, 1e-10, max_time);
+        ipm::ExistenceReport report = ipm::check_existence(p, 1e-10, max_time, stop);
         return std::make_pair(std::move(report), ipm::diagnose(p));
       },
       problem);

@@ -629,7 +629,8 @@ void check_both_forms(const LocalProblem& p, bool exists) {
 
 TEST_CASE("Existence check: the program stops at its first certified witness", "[ipm][existence]") {
   // The bundled problems of both kinds, every program (FC/I's global form,
-  // FC/II's Cholesky form, a dense W's reduced form): stopped early, the
+  // FC/II's Cholesky form, a dense W's reduced form), to the optimum
+  // (ExistenceStop::AtOptimum) and to the first certified witness: stopped early, the
   // verdict is that of the program run to its optimum, the witness is
   // certified here against the data, x > 0, and where it stopped it took
   // fewer iterations than the optimum did.
@@ -641,8 +642,8 @@ TEST_CASE("Existence check: the program stops at its first certified witness", "
     const fclib::Problem problem = fclib::read_problem(name);
     std::visit(
         [&](const auto& p) {
-          ipm::detail::ExistenceBudget full_budget(1e-10);
-          full_budget.stop_at_certified = false;
+          const ipm::detail::ExistenceBudget full_budget(1e-10, std::numeric_limits<double>::infinity(),
+                                                         ipm::ExistenceStop::AtOptimum);
           const auto run = [&p](const ipm::detail::ExistenceBudget& budget) {
             return ipm::detail::with_friction_cone(p, [&](auto cone) {
               using Cone = decltype(cone);

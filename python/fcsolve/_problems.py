@@ -386,7 +386,7 @@ def _interior_point_tool(name):
             "fcsolve does not have") from None
 
 
-def check_existence(problem, tol=1e-10, max_time=None):
+def check_existence(problem, tol=1e-10, max_time=None, to_optimum=False):
     """Numerical check of the existence assumption (Acary & Cadoux 2013;
     Acary, Cadoux, Lemarechal & Malick 2011, Thm 3.3): is there v with
     H^T v + w strictly inside the dual cones K* (for a LocalProblem: r with
@@ -394,7 +394,8 @@ def check_existence(problem, tol=1e-10, max_time=None):
 
     Solves a homogenised second-order-cone program with the interior-point
     method and checks the witness of every iterate directly, stopping at the
-    first certified one. Returns a dict: slater (True: a solution exists),
+    first certified one (to_optimum=True: on to the program's optimum x*,
+    the statistic of the talk's validation). Returns a dict: slater (True: a solution exists),
     verdict ('solution-exists' or 'not-established'), x_star (optimal value
     of the program, > 0 iff the assumption holds; its size depends on the
     program's form, e.g. a LocalProblem with a dense W runs the reduced
@@ -416,4 +417,4 @@ def check_existence(problem, tol=1e-10, max_time=None):
         raise TypeError("problem must be an fcsolve.LocalProblem or fcsolve.GlobalProblem")
     # the C++ check refuses a max_time that is not positive (fcsolve.UsageError)
     max_time = float("inf") if max_time is None else float(max_time)
-    return _interior_point_tool("check_existence")(problem._data, tol, max_time)
+    return _interior_point_tool("check_existence")(problem._data, tol, max_time, bool(to_optimum))

@@ -282,11 +282,13 @@ double cpp_solve_seconds(const LocalProblemData& data, const std::string& solver
 #ifdef FCSOLVE_PY_EXISTENCE_CHECK
 
 template <class Data>
-py::dict existence_dict(const Data& data, double tol, double max_time) {
+py::dict existence_dict(const Data& data, double tol, double max_time, bool to_optimum) {
   fcsolve::ipm::ExistenceReport rep;
   {
     py::gil_scoped_release unlocked;
-    rep = fcsolve::ipm::check_existence(data.problem, tol, max_time);
+    rep = fcsolve::ipm::check_existence(data.problem, tol, max_time,
+                                        to_optimum ? fcsolve::ipm::ExistenceStop::AtOptimum
+                                                   : fcsolve::ipm::ExistenceStop::AtCertifiedWitness);
   }
   return py::dict("slater"_a = rep.slater,
                   "verdict"_a = rep.slater ? "solution-exists" : "not-established",
@@ -319,7 +321,7 @@ py::dict diagnostics_dict(const Data& data) {
 template <class Data>
 void add_checks(py::module_& m) {
   m.def("check_existence", &existence_dict<Data>, "problem"_a, "tol"_a = 1e-10,
-        "max_time"_a = std::numeric_limits<double>::infinity(),
+        "max_time"_a = std::numeric_limits<double>::infinity(), "to_optimum"_a = false,
         "Slater's assumption by the SOC program of Acary & Cadoux 2013 (see fcsolve.check_existence).");
   m.def("diagnostics", &diagnostics_dict<Data>, "problem"_a,
         "Rank of H (or W), spectrum and asymmetry of W (see Problem.diagnostics).");

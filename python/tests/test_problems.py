@@ -394,6 +394,11 @@ def test_existence_check_honours_max_time():
     assert (rep["verdict"] == "solution-exists") == (rep["margin"] > 0)
     full = fcsolve.check_existence(P, max_time=60)
     assert full["check_status"] != "timeout" and full["verdict"] == "solution-exists"
+    # to_optimum: on past the first certified witness to x*, same verdict
+    optimum = fcsolve.check_existence(P, to_optimum=True)
+    assert optimum["check_status"] not in ("certified", "timeout"), optimum  # Capsules: stalled
+    assert optimum["verdict"] == "solution-exists"
+    assert optimum["check_iterations"] >= full["check_iterations"] and optimum["x_star"] > 0
     for bad in (0, -1.0, float("nan")):
         with pytest.raises(ValueError, match="max_time"):
             fcsolve.check_existence(P, max_time=bad)

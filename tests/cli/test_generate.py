@@ -205,6 +205,10 @@ def test_check_honours_max_time(tmp_path):
         d = json.loads(full.stdout)
         assert d["check_status"] in ("certified", "converged") and d["verdict"] == "solution-exists", d
         assert d["x_star"] > 0 and d["margin"] > 0 and d["check_iterations"] > 0, d
+        # --to-optimum: the program runs on to x*, past the certified witness
+        opt = json.loads(run("check", path, "--to-optimum", "--json").stdout)
+        assert opt["check_status"] not in ("certified", "timeout") and opt["verdict"] == "solution-exists", opt
+        assert opt["check_iterations"] >= d["check_iterations"] and opt["x_star"] > 0, (opt, d)
         cut = run("check", path, "--max-time", "0.001", "--json")
         assert cut.returncode == 0, cut.stderr
         c = json.loads(cut.stdout)

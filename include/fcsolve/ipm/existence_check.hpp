@@ -23,7 +23,8 @@
 // The certificate is evaluated at every iterate of the program, which stops
 // at the first certified one with x > 0 (stop_when_certified): the verdict
 // is then proven and x is that iterate's, not the optimum. It runs to the
-// optimum only where no witness is certified on the way.
+// optimum where no witness is certified on the way, or where the caller
+// asks for x* (ExistenceStop::AtOptimum).
 //
 // For FC/II (only W, q): {H^T v + w} = {W r + q : r in R^m} when
 // W = H^T M^-1 H and q = H^T M^-1 f + w (M SPD), so the same check runs with
@@ -94,6 +95,12 @@ struct ExistenceReport {
   bool stopped_certified = false;
 };
 
+/// Where the existence program stops: at its first iterate whose witness is
+/// certified (the verdict proven, x that iterate's), or at its optimum x*
+/// (the talk's validation statistic; a witness certified on the way is
+/// still the verdict's only ground).
+enum class ExistenceStop { AtCertifiedWitness, AtOptimum };
+
 /// The program's status as reported (`check_status`): "certified" where it
 /// stopped at a certified witness, else its SolverInfo status.
 inline std::string check_status(const ExistenceReport& rep) {
@@ -119,15 +126,14 @@ void certify(ExistenceReport& rep, const Vector& u, const Eigen::Ref<const Vecto
 /// check_existence's start (the factorisations before the interior point
 /// count too; the time is honoured between its iterations).
 struct ExistenceBudget {
-  explicit ExistenceBudget(double tol = 1e-10, double max_time = std::numeric_limits<double>::infinity())
-      : tol(tol), max_time(max_time) {
+  explicit ExistenceBudget(double tol = 1e-10, double max_time = std::numeric_limits<double>::infinity(),
+                           ExistenceStop stop = ExistenceStop::AtCertifiedWitness)
+      : tol(tol), max_time(max_time), stop(stop) {
     if (!(max_time > 0)) throw UsageError("the existence check's max_time must be positive (seconds; inf: no limit)");
   }
   double tol;
   double max_time;
-  /// Stop at the first certified witness (stop_when_certified); false runs
-  /// the program to its optimum (tests compare the two).
-  bool stop_at_certified = true;
+  ExistenceStop stop;
   Stopwatch clock;
 
   IpmSettings settings() const {
@@ -167,14 +173,14 @@ void stop_when_certified(Ipm& ipm, ExistenceReport& early, const Evaluate& evalu
   };
 }
 
-/// Solves the program (with stop_when_certified unless the budget says
-/// otherwise) and returns the report of the certified iterate, or of the
+/// Solves the program (with stop_when_certified unless the budget asks
+/// for the optimum) and returns the report of the certified iterate, or of the
 /// returned point (r, w).
 template <class Ipm, class Evaluate>
 ExistenceReport run_program(Ipm& ipm, Vector& r, Vector& w, const Evaluate& evaluate,
                             const ExistenceBudget& budget) {
   ExistenceReport early;
-  if (budget.stop_at_certified) stop_when_certified(ipm, early, evaluate);
+  if (budget.stop == ExistenceStop::AtCertifiedWitness) stop_when_certified(ipm, early, evaluate);
   const SolverInfo info = ipm.solve(r, w);
   ExistenceReport rep;
   if (early.stopped_certified) rep = std::move(early);
@@ -361,8 +367,9 @@ ExistenceReport with_friction_cone(const View& p, Solve&& solve) {
 /// Slater's assumption for FC/I: max x s.t. H^T v + w - a x in K*.
 template <class Backend = DefaultBackend>
 ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10,
-                                double max_time = std::numeric_limits<double>::infinity()) {
-  const detail::ExistenceBudget budget(tol, max_time);
+                                double max_time = std::numeric_limits<double>::infinity(),
+                                ExistenceStop stop = ExistenceStop::AtCertifiedWitness) {
+  const detail::ExistenceBudget budget(tol, max_time, stop);
   return detail::with_friction_cone(p, [&](auto cone) {
     return detail::solve_existence<decltype(cone), Backend>(SparseMatrix(p.H), Vector(p.w), p.mu, budget);
   });
@@ -373,8 +380,9 @@ ExistenceReport check_existence(const GlobalProblemView& p, double tol = 1e-10,
 /// Cholesky form (header).
 template <class Backend = DefaultBackend>
 ExistenceReport check_existence(const LocalProblemView& p, double tol = 1e-10,
-                                double max_time = std::numeric_limits<double>::infinity()) {
-  const detail::ExistenceBudget budget(tol, max_time);
+                                double max_time = std::numeric_limits<double>::infinity(),
+                                ExistenceStop stop = ExistenceStop::AtCertifiedWitness) {
+  const detail::ExistenceBudget budget(tol, max_time, stop);
   return detail::with_friction_cone(p, [&](auto cone) {
     using Cone = decltype(cone);
     const SparseMatrix W(p.W);
