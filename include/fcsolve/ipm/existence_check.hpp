@@ -97,8 +97,8 @@ struct ExistenceReport {
 
 /// Where the existence program stops: at its first iterate whose witness is
 /// certified (the verdict proven, x that iterate's), or at its optimum x*
-/// (the talk's validation statistic; a witness certified on the way is
-/// still the verdict's only ground).
+/// (the talk's validation statistic; the verdict then rests on the
+/// optimum's witness alone, as it did before the early stop).
 enum class ExistenceStop { AtCertifiedWitness, AtOptimum };
 
 /// The program's status as reported (`check_status`): "certified" where it
